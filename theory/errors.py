@@ -1,0 +1,16 @@
+"""The one error type for invalid user input: it names the parameter and its valid range."""
+
+from __future__ import annotations
+
+
+class ParameterError(ValueError):
+    """A parameter outside its valid range, missing, misspelled or not a number."""
+
+    def __init__(self, name: str, value: object, valid: str, hint: str = "") -> None:
+        self.name = name
+        self.value = value
+        self.valid = valid
+        msg = f"{name} = {value!r} is invalid: {valid}"
+        if hint:
+            msg += f" ({hint})"
+        super().__init__(msg)

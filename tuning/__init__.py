@@ -1,0 +1,1 @@
+"""Floor 3: the ``lgw`` command line, gain design and certificates."""
