@@ -42,7 +42,7 @@ AXES = ("x", "y", "z")
 # ground, then taking the one with the smallest sound landing-time bound and rounding it.
 # Verified with a tight solve_ivp (rtol = atol = 1e-8): lands in 27.4 s, peak 32.4 kN (y axis),
 # 235 kg of fuel; sound landing-time bound (T1* + T2*) 157.9 s.  q1 = 0.6 > 1/2 keeps the printed
-# law's |s1|^(2 q1 - 1) term bounded.  The reproduction script is benchmarks/default_gains_search.py.
+# law's |s1|^(2 q1 - 1) term bounded.  Reproduce: python benchmarks/default_gains_search.py.
 DEFAULT_GAINS = {
     "gains": {
         "beta1": 2.8, "beta2": 4.0e-4, "alpha1": 0.5, "alpha2": 2.0e-5,

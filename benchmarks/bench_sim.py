@@ -1,0 +1,208 @@
+"""Speed and accuracy of the simulators (a script, not a timed test).
+
+    /work/venv/bin/python benchmarks/bench_sim.py                 # (a), (b), (c), numpy batch
+    /work/venv/bin/python benchmarks/bench_sim.py --million       # + 1,000,000 Table II landings
+    /work/venv/bin/python benchmarks/bench_sim.py --floor         # chattering floor vs dt
+
+Measures, on Table II cases (seed 000, corrected law, default gains, physical drag):
+  (a) a per-case scipy solve_ivp loop (RK45, rtol = atol = 1e-8, landing event) written as a
+      user would: numpy RHS calling theory.mars_mss.law_numeric;
+  (b) python-control: input_output_response of sim.interop.closed_loop_nlsys per case
+      (RK45, rtol = atol = 1e-8, output grid every 0.01 s to 30 s);
+  (c) sim.batch.simulate_batch (numba RK4, fixed dt), after a warm-up call (compile time is
+      printed separately);
+  (d) the same batched RK4 in plain numpy arrays (no numba, no events): what batching alone
+      buys, to show whether numba pays;
+and prints cases/second, the ratios (c)/(a), (c)/(b), (c)/(d), and the accuracy of (c)
+against (a): landing time and landing position.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from sim.batch import simulate_batch
+from sim.campaign import table2_states
+from sim.mars import drag_accel, exhaust_velocity
+from theory.gains import default_gains
+from theory.mars_mss import law_numeric
+from theory.parameters import G_MARS, M0, R0, V0
+
+
+def user_solve_ivp(r0, v0, m0, g, t_max=60.0):
+    """(a): the loop a user would write."""
+    law = law_numeric("corrected")
+    c = exhaust_velocity()
+    out = []
+    for i in range(len(r0)):
+        def rhs(t, y):
+            r, v, m = y[:3], y[3:6], y[6]
+            am = drag_accel(r, v, m, "physical")
+            a = law(r, v, G_MARS, am, g.beta1, g.beta2, g.alpha1, g.alpha2, g.q1, g.q2,
+                    g.g1, g.g2)
+            return np.concatenate([v, a + G_MARS + am, [-m * np.linalg.norm(a) / c]])
+
+        def land(t, y):
+            return max(np.linalg.norm(y[:3]) / 0.1, np.linalg.norm(y[3:6]) / 0.1) - 1.0
+        land.terminal = True
+        land.direction = -1
+        y0 = np.concatenate([r0[i], v0[i], [m0[i]]])
+        sol = solve_ivp(rhs, (0, t_max), y0, method="RK45", rtol=1e-8, atol=1e-8,
+                        events=land, dense_output=True)
+        tl = sol.t_events[0][0] if len(sol.t_events[0]) else np.nan
+        out.append((tl, sol.sol(tl)[:3] if np.isfinite(tl) else np.full(3, np.nan)))
+    return np.array([o[0] for o in out]), np.array([o[1] for o in out])
+
+
+def python_control(r0, v0, m0, g):
+    """(b): python-control per case."""
+    import control
+
+    from sim.interop import closed_loop_nlsys
+
+    sys = closed_loop_nlsys(g)
+    T = np.arange(0.0, 30.0 + 1e-9, 0.01)
+    for i in range(len(r0)):
+        x0 = np.concatenate([r0[i], v0[i], [m0[i]]])
+        control.input_output_response(sys, T, U=0, X0=x0, solve_ivp_method="RK45",
+                                      solve_ivp_kwargs={"rtol": 1e-8, "atol": 1e-8})
+
+
+def numpy_batch(r0, v0, m0, g, dt=0.05, t_end=28.0):
+    """(d): RK4 on (N, 3) numpy arrays, fixed horizon, no events."""
+    law = law_numeric("corrected")
+    c = exhaust_velocity()
+
+    def f(r, v, m):
+        am = drag_accel(r, v, m, "physical")
+        a = law(r, v, G_MARS, am, g.beta1, g.beta2, g.alpha1, g.alpha2, g.q1, g.q2, g.g1, g.g2)
+        return v, a + G_MARS + am, -m * np.linalg.norm(a, axis=1) / c
+
+    r, v, m = r0.copy(), v0.copy(), m0.copy()
+    with np.errstate(all="ignore"):
+        for _ in range(int(t_end / dt)):
+            k1 = f(r, v, m)
+            k2 = f(r + dt / 2 * k1[0], v + dt / 2 * k1[1], m + dt / 2 * k1[2])
+            k3 = f(r + dt / 2 * k2[0], v + dt / 2 * k2[1], m + dt / 2 * k2[2])
+            k4 = f(r + dt * k3[0], v + dt * k3[1], m + dt * k3[2])
+            r = r + dt / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
+            v = v + dt / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
+            m = m + dt / 6 * (k1[2] + 2 * k2[2] + 2 * k3[2] + k4[2])
+    return r
+
+
+def chatter_floor(g, dts=(0.01, 0.02, 0.05, 0.1, 0.2)) -> None:
+    """Max |s1|, |s2| over t in [90, 120] s on Table I with stop="t_max" (the RK4 floor)."""
+    from theory.mars_mss import surfaces_numeric
+
+    s2f = surfaces_numeric()[1]
+    print("chattering floor (Table I, corrected law, max over t in [90, 120] s):")
+    print(f"{'dt s':>8} {'|s1| m':>10} {'|s2| m/s':>10} {'0.85 dt^1.5':>12}")
+    for dt in dts:
+        b = simulate_batch(R0[None], V0[None], [M0], g, dt=dt, t_max=120.0, stop="t_max",
+                           record=True)
+        tr = b.trajectory
+        w = tr["t"] >= 90.0
+        s2 = s2f(tr["r"][0], tr["v"][0], g.beta1, g.beta2, g.q1, g.q2)
+        print(f"{dt:8.3f} {np.abs(tr['r'][0][w]).max():10.2e} {np.abs(s2[w]).max():10.2e} "
+              f"{0.85 * dt**1.5:12.2e}")
+
+
+def million(g, dt: float, n: int = 1_000_000, chunk: int = 100_000) -> None:
+    """Fly n Table II cases in chunks (seeded per chunk), keeping only the statistics."""
+    from rich.progress import Progress
+
+    landed = 0
+    worst_err = 0.0
+    times = []
+    t0 = time.perf_counter()
+    with Progress() as bar:
+        task = bar.add_task(f"{n} Table II landings", total=n)
+        for k in range(0, n, chunk):
+            m = min(chunk, n - k)
+            r0, v0, m0 = table2_states(m, seed=1000 + k)
+            b = simulate_batch(r0, v0, m0, g, dt=dt, chunk=m)
+            landed += int(b.landed.sum())
+            worst_err = max(worst_err, float(np.nanmax(np.linalg.norm(b.r_land, axis=1))))
+            times.append(b.landing_time)
+            bar.advance(task, m)
+    el = time.perf_counter() - t0
+    lt = np.concatenate(times)
+    print(f"(c) {n} Table II cases, dt = {dt} s: {el:.1f} s wall = {n / el:.0f} cases/s; "
+          f"landed {landed}/{n}; landing time min/median/max {np.nanmin(lt):.2f}/"
+          f"{np.nanmedian(lt):.2f}/{np.nanmax(lt):.2f} s; max landing error {worst_err:.3f} m")
+    full = el * 1_000_000 / n
+    tag = "measured" if n == 1_000_000 else f"EXTRAPOLATED linearly from {n} cases"
+    print(f"   1,000,000 landings: {full / 60:.1f} min ({tag}) -> "
+          f"{'under' if full < 600 else 'OVER'} the 10-minute target")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--n-batch", type=int, default=20_000)
+    ap.add_argument("--n-ivp", type=int, default=8)
+    ap.add_argument("--n-control", type=int, default=3)
+    ap.add_argument("--n-numpy", type=int, default=2_000)
+    ap.add_argument("--dt", type=float, default=0.05)
+    ap.add_argument("--million", action="store_true", help="also fly 1,000,000 Table II cases")
+    ap.add_argument("--million-n", type=int, default=1_000_000,
+                    help="cases for --million (fewer: the 1e6 time is extrapolated, and said so)")
+    ap.add_argument("--floor", action="store_true", help="only the chattering-floor table")
+    args = ap.parse_args()
+    g = default_gains()
+    print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} "
+          "(other processes share the cores: numbers are lower bounds)")
+    if args.floor:
+        chatter_floor(g)
+        return
+    r0, v0, m0 = table2_states(max(args.n_batch, args.n_ivp), seed=0)
+
+    t = time.perf_counter()
+    simulate_batch(r0[:2], v0[:2], m0[:2], g, dt=args.dt)
+    print(f"numba compile + first call: {time.perf_counter() - t:.1f} s")
+    t = time.perf_counter()
+    b = simulate_batch(r0[:args.n_batch], v0[:args.n_batch], m0[:args.n_batch], g, dt=args.dt)
+    rate_c = args.n_batch / (time.perf_counter() - t)
+    print(f"(c) batched numba RK4 dt={args.dt}: {args.n_batch} cases, {rate_c:.0f} cases/s "
+          f"({b.landed.sum()} landed)")
+
+    n = args.n_ivp
+    t = time.perf_counter()
+    tl_a, rl_a = user_solve_ivp(r0[:n], v0[:n], m0[:n], g)
+    rate_a = n / (time.perf_counter() - t)
+    print(f"(a) solve_ivp RK45 1e-8 loop: {n} cases, {rate_a:.2f} cases/s")
+
+    t = time.perf_counter()
+    python_control(r0[:args.n_control], v0[:args.n_control], m0[:args.n_control], g)
+    rate_b = args.n_control / (time.perf_counter() - t)
+    print(f"(b) python-control input_output_response: {args.n_control} cases, "
+          f"{rate_b:.2f} cases/s")
+
+    t = time.perf_counter()
+    numpy_batch(r0[:args.n_numpy], v0[:args.n_numpy], m0[:args.n_numpy], g, dt=args.dt)
+    rate_d = args.n_numpy / (time.perf_counter() - t)
+    print(f"(d) batched numpy RK4 (no numba, no events) dt={args.dt}: {args.n_numpy} cases, "
+          f"{rate_d:.0f} cases/s")
+
+    dT = np.abs(b.landing_time[:n] - tl_a)
+    dR = np.linalg.norm(b.r_land[:n] - rl_a, axis=1)
+    print(f"ratios: (c)/(a) = {rate_c / rate_a:.0f}x, (c)/(b) = {rate_c / rate_b:.0f}x, "
+          f"(c)/(d) numba vs numpy = {rate_c / rate_d:.1f}x")
+    print(f"accuracy of (c) vs (a) on {n} cases: max |dT_land| = {dT.max():.2e} s, "
+          f"max |dr_land| = {dR.max():.2e} m (targets 0.01 s, 0.01 m): "
+          f"{'OK' if dT.max() < 0.01 and dR.max() < 0.01 else 'FAIL'}")
+    print(f"target (c) >= 1000 x (a): {'OK' if rate_c >= 1000 * rate_a else 'FAIL'}; "
+          f"extrapolated 1e6 Table II landings: {1e6 / rate_c / 60:.1f} min "
+          "(extrapolated from the run above; --million measures it)")
+    if args.million:
+        million(g, args.dt, n=args.million_n)
+
+
+
+if __name__ == "__main__":
+    main()

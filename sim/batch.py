@@ -1,0 +1,577 @@
+"""Batched fixed-step simulation of seed 000's closed loop: N cases advance together.
+
+The plant is seed 000 (10)-(14) (see ``sim.mars``), the guidance any law of ``sim.laws``
+(compiled from ``theory``'s SymPy expressions), the disturbance one of ``sim.disturbances``.
+Integration is classical RK4 with an explicit step ``dt``, compiled with numba and run in
+parallel over cases (``numba.prange``); each case stops when it lands (or at t_max), so cases
+do not wait for each other and results do not depend on how cases are batched or chunked.
+
+What is recorded per case (``BatchResult``):
+  landing: the first time |r| <= tol_r and |v| <= tol_v.  It is detected at the step nodes and
+    located inside the step by bisection on cubic Hermite interpolants of r (with r' = v) and
+    v (with v' from the RHS at both nodes), which are O(dt^4) accurate like RK4 itself;
+    r_land, v_land, fuel (m0 - m at landing) are evaluated there;
+  t_s1, t_s2: per axis, the first time |s| <= eps (s1 = r, (15); s2 of (21) with the gain
+    set's beta, q), from the signed linear interpolant of s between nodes (so a zero crossing
+    inside a step counts); t_s1_last_exit, t_s2_last_exit: the last time s left that band
+    (NaN if it never left after entering).  These are tracked until t_max when stop="t_max";
+  peak_thrust / peak_thrust_unsat: max |F_i| at the nodes until landing, after / before the
+    thrust limit; time_saturated: node-sampled time (left-endpoint rule) with the command
+    limited on some axis, until landing; min_altitude and ground_contact (r_z < 0 at a node
+    before landing: the paper's Fig. 8 "collision");
+  nonfinite: the state became NaN/inf (the corrected law's |s1|^(q1-1) v is +-inf at s1 = 0
+    with v != 0; with a thrust limit it saturates, without one the case is flagged and
+    stopped, never silently dropped).  ``t_end`` and ``y_end`` give where each case stopped.
+
+Chattering: the laws are not Lipschitz at s = 0 (|s|^q with q < 1), so an explicit step
+leaves a residual oscillation of s whose size depends on dt.  ``eps`` must sit above it; the
+default (``sim.parameters.EPS_DEFAULT``) does by a wide margin at the default dt, see
+benchmarks/bench_sim.py --floor and docs/sim.md.  sign() is never smoothed: no boundary layer.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields
+from functools import cache
+from typing import Any
+
+import numba
+import numpy as np
+
+from sim.disturbances import KIND_CODE, DisturbanceSpec, make_disturbance
+from sim.laws import get_law, numba_law, numba_s2, surface_params
+from sim.mars import check_drag, exhaust_velocity
+from sim.parameters import (
+    CD_LANDER,
+    DT_DEFAULT,
+    EPS_DEFAULT,
+    H_MARS,
+    PRINTED_DRAG_COEF,
+    PRINTED_DRAG_DECAY,
+    RHO0_MARS,
+)
+from theory.errors import ParameterError
+from theory.gains import Gains
+from theory.parameters import AREA, G_MARS, ISP
+
+DRAG_CODE = {"none": 0, "physical": 1, "printed": 2}
+LIMITS = ("axis", "norm")
+STOP_MODES = ("landing", "t_max")
+
+ARRAY_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thrust",
+                "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact", "t_s1",
+                "t_s2", "t_s1_last_exit", "t_s2_last_exit", "nonfinite", "t_end", "y_end")
+
+
+@dataclass
+class BatchResult:
+    """Per-case outcomes of a batch (arrays of length N) and the integration settings."""
+
+    landed: np.ndarray
+    landing_time: np.ndarray
+    r_land: np.ndarray
+    v_land: np.ndarray
+    fuel: np.ndarray
+    peak_thrust: np.ndarray
+    peak_thrust_unsat: np.ndarray
+    time_saturated: np.ndarray
+    min_altitude: np.ndarray
+    ground_contact: np.ndarray
+    t_s1: np.ndarray
+    t_s2: np.ndarray
+    t_s1_last_exit: np.ndarray
+    t_s2_last_exit: np.ndarray
+    nonfinite: np.ndarray
+    t_end: np.ndarray
+    y_end: np.ndarray
+    eps: float
+    dt: float
+    r0: np.ndarray | None = None
+    v0: np.ndarray | None = None
+    m0: np.ndarray | None = None
+    trajectory: dict[str, np.ndarray] | None = None
+    info: dict[str, Any] = field(default_factory=dict)
+
+    def __len__(self) -> int:
+        return len(self.landed)
+
+    @staticmethod
+    def concat(parts: list[BatchResult]) -> BatchResult:
+        """Join chunk results in order (trajectories are not joined)."""
+        first = parts[0]
+        kw: dict[str, Any] = {k: np.concatenate([getattr(p, k) for p in parts])
+                              for k in ARRAY_FIELDS}
+        for k in ("r0", "v0", "m0"):
+            kw[k] = np.concatenate([getattr(p, k) for p in parts])
+        return BatchResult(eps=first.eps, dt=first.dt, info=dict(first.info), **kw)
+
+    def equal(self, other: BatchResult) -> bool:
+        """Bitwise equality of every per-case array (NaN == NaN)."""
+        return all(np.array_equal(getattr(self, k), getattr(other, k), equal_nan=True)
+                   for k in ARRAY_FIELDS) and self.eps == other.eps and self.dt == other.dt
+
+
+# --- compiled pieces ----------------------------------------------------------------------
+
+@numba.njit(error_model="numpy", inline="always")
+def _drag_fac(kind: int, rz: float) -> float:
+    """Altitude factor of the drag model (computed once per RHS, shared by the three axes)."""
+    if kind == 1:  # physical: rho(rz)/rho0 = e^(-rz/H)
+        return math.exp(-rz / H_MARS)
+    if kind == 2:  # seed 000 (12) as printed: e^(-0.0009 rz)
+        return math.exp(-PRINTED_DRAG_DECAY * rz)
+    return 0.0
+
+
+@numba.njit(error_model="numpy", inline="always")
+def _drag(kind: int, fac: float, vi: float, area: float, m: float) -> float:
+    if kind == 1:  # physical: -(1/2) rho0 e^(-rz/H) C_D A |v| v / m
+        return -0.5 * RHO0_MARS * fac * CD_LANDER * area * abs(vi) * vi / m
+    if kind == 2:  # seed 000 (12) as printed: -0.699 v^2 e^(-0.0009 rz) / (A m)
+        return -PRINTED_DRAG_COEF * vi * vi * fac / (area * m)
+    return 0.0
+
+
+@numba.njit(error_model="numpy", inline="always")
+def _herm(p0: float, d0: float, p1: float, d1: float, h: float, th: float) -> float:
+    t2 = th * th
+    t3 = t2 * th
+    return ((2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + th) * h * d0
+            + (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * h * d1)
+
+
+@numba.njit(error_model="numpy", inline="always")
+def _band(sa: float, sb: float, eps: float) -> tuple[float, float]:
+    """[lo, hi] in [0, 1] where the linear interpolant of s has |s| <= eps (lo > hi: empty)."""
+    ds = sb - sa
+    if ds == 0.0:
+        return (0.0, 1.0) if abs(sa) <= eps else (1.0, 0.0)
+    a = (-eps - sa) / ds
+    b = (eps - sa) / ds
+    lo = min(a, b)
+    hi = max(a, b)
+    return max(lo, 0.0), min(hi, 1.0)
+
+
+@cache
+def _compile(law: str, parallel: bool = True):
+    """Build the RK4 kernel for one law (numba compiles it on first call, ~10 s).
+
+    parallel=False gives the same loop without threads, for executors (dask) that parallelise
+    over chunks themselves."""
+    law_fn = numba_law(law)
+    s2_fn = numba_s2()
+
+    @numba.njit(error_model="numpy")
+    def rhs(t, y, dy, F, Fu, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc, dw,
+            dp, SP):
+        m = y[6]
+        fac_g = _drag_fac(gkind, y[2])
+        fac_p = fac_g if pkind == gkind else _drag_fac(pkind, y[2])
+        for ax in range(3):
+            am = _drag(gkind, fac_g, y[3 + ax], area[ax], m)
+            Fu[ax] = m * law_fn(y[ax], y[3 + ax], grav[ax], am, m, P, ax)
+        if lim == 1:
+            for ax in range(3):
+                f = Fu[ax]
+                F[ax] = fmax if f > fmax else (-fmax if f < -fmax else f)
+        elif lim == 2:
+            ninf = 0
+            for ax in range(3):
+                if math.isinf(Fu[ax]):
+                    ninf += 1
+            if ninf > 0:  # direction of the infinite components, then scale to the limit
+                for ax in range(3):
+                    F[ax] = (1.0 if Fu[ax] > 0 else -1.0) if math.isinf(Fu[ax]) else 0.0
+            else:
+                for ax in range(3):
+                    F[ax] = Fu[ax]
+            n = math.sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2])
+            if n > fmax or ninf > 0:
+                for ax in range(3):
+                    F[ax] = F[ax] * (fmax / n)
+        else:
+            for ax in range(3):
+                F[ax] = Fu[ax]
+        fn = math.sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2])
+        for ax in range(3):
+            if dkind == 1:
+                ap = damp[ax] * math.sin(t)
+            elif dkind == 2:
+                ap = 0.0
+                for k in range(dc.shape[1]):
+                    ap += dc[ax, k] * math.sin(dw[ax, k] * t + dp[ax, k])
+            elif dkind == 3:
+                s2 = s2_fn(y[ax], y[3 + ax], SP[ax, 0], SP[ax, 1], SP[ax, 2], SP[ax, 3])
+                ap = -damp[ax] * (1.0 if s2 > 0 else (-1.0 if s2 < 0 else 0.0))
+            else:
+                ap = 0.0
+            dy[ax] = y[3 + ax]
+            dy[3 + ax] = F[ax] / m + grav[ax] + _drag(pkind, fac_p, y[3 + ax], area[ax], m) + ap
+        dy[6] = -fn / c
+
+    @numba.njit(error_model="numpy", parallel=parallel)
+    def kernel(r0, v0, m0, P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dcoef,
+               domega, dphase, dt, nsteps, eps, tol_r, tol_v, stop_landing, record,
+               landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground,
+               ts1, ts2, ts1x, ts2x, nonfinite, t_end, y_end, rec_y, rec_F):
+        n = r0.shape[0]
+        P_ = P
+        SP_ = SP
+        grav_ = grav
+        area_ = area
+        damp_ = damp
+        for i in numba.prange(n):
+            # Thread-local copies: passing the shared arrays to rhs() reference-counts them
+            # atomically from both threads at every call, which doubled the cost per step.
+            P = P_.copy()
+            SP = SP_.copy()
+            grav = grav_.copy()
+            area = area_.copy()
+            damp = damp_.copy()
+            y = np.empty(7)
+            yn = np.empty(7)
+            yt = np.empty(7)
+            k1 = np.empty(7)
+            k1n = np.empty(7)
+            k2 = np.empty(7)
+            k3 = np.empty(7)
+            k4 = np.empty(7)
+            F = np.empty(3)
+            Fu = np.empty(3)
+            Fn = np.empty(3)
+            Fun = np.empty(3)
+            s_old = np.empty(6)
+            s_new = np.empty(6)
+            tf = np.full(6, np.nan)  # first entry, s1 x/y/z then s2 x/y/z
+            tx = np.full(6, np.nan)  # last exit
+            dc = dcoef[i].copy()
+            dw = domega[i].copy()
+            dp = dphase[i].copy()
+            for ax in range(3):
+                y[ax] = r0[i, ax]
+                y[3 + ax] = v0[i, ax]
+            y[6] = m0[i]
+            pk = np.zeros(3)
+            pku = np.zeros(3)
+            ts = 0.0
+            za = y[2]
+            gc = y[2] < 0.0
+            has_landed = False
+            bad = False
+            tl = np.nan
+            rhs(0.0, y, k1, F, Fu, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc,
+                dw, dp, SP)
+            for ax in range(3):
+                s_old[ax] = y[ax]
+                s_old[3 + ax] = s2_fn(y[ax], y[3 + ax], SP[ax, 0], SP[ax, 1], SP[ax, 2],
+                                      SP[ax, 3])
+            for j in range(6):
+                if abs(s_old[j]) <= eps:
+                    tf[j] = 0.0
+            if (math.sqrt(y[0] ** 2 + y[1] ** 2 + y[2] ** 2) <= tol_r
+                    and math.sqrt(y[3] ** 2 + y[4] ** 2 + y[5] ** 2) <= tol_v):
+                has_landed = True
+                tl = 0.0
+                for ax in range(3):
+                    r_land[i, ax] = y[ax]
+                    v_land[i, ax] = y[3 + ax]
+                fuel[i] = 0.0
+            if record:
+                for j in range(7):
+                    rec_y[i, 0, j] = y[j]
+                for ax in range(3):
+                    rec_F[i, 0, ax] = F[ax]
+            t = 0.0
+            step = 0
+            while step < nsteps:
+                if has_landed and stop_landing:
+                    break
+                h = dt
+                # classical RK4
+                for j in range(7):
+                    yt[j] = y[j] + 0.5 * h * k1[j]
+                rhs(t + 0.5 * h, yt, k2, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim,
+                    dkind, damp, dc, dw, dp, SP)
+                for j in range(7):
+                    yt[j] = y[j] + 0.5 * h * k2[j]
+                rhs(t + 0.5 * h, yt, k3, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim,
+                    dkind, damp, dc, dw, dp, SP)
+                for j in range(7):
+                    yt[j] = y[j] + h * k3[j]
+                rhs(t + h, yt, k4, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim,
+                    dkind, damp, dc, dw, dp, SP)
+                finite = True
+                for j in range(7):
+                    yn[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+                    if not math.isfinite(yn[j]):
+                        finite = False
+                t_new = (step + 1) * dt
+                if not finite:
+                    bad = True
+                    break
+                # derivative and command at the new node (reused as the next step's k1)
+                rhs(t_new, yn, k1n, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim, dkind,
+                    damp, dc, dw, dp, SP)
+                # sliding-variable bands, linear between nodes
+                for ax in range(3):
+                    s_new[ax] = yn[ax]
+                    s_new[3 + ax] = s2_fn(yn[ax], yn[3 + ax], SP[ax, 0], SP[ax, 1], SP[ax, 2],
+                                          SP[ax, 3])
+                for j in range(6):
+                    lo, hi = _band(s_old[j], s_new[j], eps)
+                    if lo <= hi:
+                        if math.isnan(tf[j]):
+                            tf[j] = t + lo * h
+                        if hi < 1.0:
+                            tx[j] = t + hi * h
+                    s_old[j] = s_new[j]
+                if not has_landed:
+                    # metrics until landing: command at the step's left node
+                    sat = False
+                    for ax in range(3):
+                        pk[ax] = max(pk[ax], abs(F[ax]))
+                        pku[ax] = max(pku[ax], abs(Fu[ax]))
+                        if F[ax] != Fu[ax]:
+                            sat = True
+                    rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
+                    vn = math.sqrt(yn[3] ** 2 + yn[4] ** 2 + yn[5] ** 2)
+                    frac = 1.0
+                    if rn <= tol_r and vn <= tol_v:
+                        # bisection on L(th) = max(|r|/tol_r, |v|/tol_v) - 1, Hermite in th
+                        a = 0.0
+                        b = 1.0
+                        for _ in range(60):
+                            mid = 0.5 * (a + b)
+                            rr = 0.0
+                            vv = 0.0
+                            for ax in range(3):
+                                rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, mid) ** 2
+                                vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h,
+                                            mid) ** 2
+                            if math.sqrt(rr) <= tol_r and math.sqrt(vv) <= tol_v:
+                                b = mid
+                            else:
+                                a = mid
+                        frac = b
+                        has_landed = True
+                        tl = t + b * h
+                        for ax in range(3):
+                            r_land[i, ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, b)
+                            v_land[i, ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax],
+                                                  k1n[3 + ax], h, b)
+                        fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)
+                    if sat:
+                        ts += frac * h
+                    if yn[2] < za:
+                        za = yn[2]
+                    if yn[2] < 0.0 and not has_landed:
+                        gc = True
+                    if has_landed:  # the command at the landing node counts too
+                        for ax in range(3):
+                            pk[ax] = max(pk[ax], abs(Fn[ax]))
+                            pku[ax] = max(pku[ax], abs(Fun[ax]))
+                for j in range(7):
+                    y[j] = yn[j]
+                    k1[j] = k1n[j]
+                for ax in range(3):
+                    F[ax] = Fn[ax]
+                    Fu[ax] = Fun[ax]
+                t = t_new
+                step += 1
+                if record:
+                    for j in range(7):
+                        rec_y[i, step, j] = y[j]
+                    for ax in range(3):
+                        rec_F[i, step, ax] = F[ax]
+            landed[i] = has_landed
+            t_land[i] = tl
+            if not has_landed:
+                fuel[i] = m0[i] - y[6]
+                for ax in range(3):
+                    r_land[i, ax] = np.nan
+                    v_land[i, ax] = np.nan
+            for ax in range(3):
+                peak[i, ax] = pk[ax]
+                peak_u[i, ax] = pku[ax]
+                ts1[i, ax] = tf[ax]
+                ts2[i, ax] = tf[3 + ax]
+                ts1x[i, ax] = tx[ax]
+                ts2x[i, ax] = tx[3 + ax]
+            tsat[i] = ts
+            minalt[i] = za
+            ground[i] = gc
+            nonfinite[i] = bad
+            t_end[i] = t
+            for j in range(7):
+                y_end[i, j] = yn[j] if bad else y[j]
+
+    return kernel
+
+
+# --- Python entry point -------------------------------------------------------------------
+
+def _check_states(r0, v0, m0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    r0 = np.atleast_2d(np.asarray(r0, float))
+    v0 = np.atleast_2d(np.asarray(v0, float))
+    m0 = np.atleast_1d(np.asarray(m0, float))
+    n = r0.shape[0]
+    if r0.shape != (n, 3):
+        raise ParameterError("r0", r0.shape, "must have shape (N, 3)")
+    if v0.shape != (n, 3):
+        raise ParameterError("v0", v0.shape, f"must have shape ({n}, 3) like r0")
+    if m0.shape == (1,) and n > 1:
+        m0 = np.full(n, m0[0])
+    if m0.shape != (n,):
+        raise ParameterError("m0", m0.shape, f"must have shape ({n},) like r0")
+    for name, a in (("r0", r0), ("v0", v0), ("m0", m0)):
+        if not np.all(np.isfinite(a)):
+            raise ParameterError(name, "non-finite values", "initial states must be finite")
+    if np.any(m0 <= 0):
+        raise ParameterError("m0", float(m0.min()), "masses must be > 0 (kg)")
+    return r0, v0, m0
+
+
+def _positive(name: str, x: float | None, unit: str, allow_none: bool = False) -> None:
+    if x is None and allow_none:
+        return
+    if x is None or not (np.isfinite(x) and x > 0):
+        raise ParameterError(name, x, f"must be a finite number > 0 ({unit})")
+
+
+def check_options(*, law: str, disturbance: str, thrust_limit: float | None, limit: str,
+                  dt: float | None, t_max: float, eps: float | None, drag: str,
+                  guidance_drag: str | None, isp: float, land_tol: tuple[float, float],
+                  stop: str) -> tuple[float, float]:
+    """Validate the options shared by the batch and reference simulators; return (dt, eps)."""
+    get_law(law)
+    if disturbance not in KIND_CODE:
+        raise ParameterError("disturbance", disturbance,
+                             f"must be one of {', '.join(KIND_CODE)}")
+    _positive("thrust_limit", thrust_limit, "N", allow_none=True)
+    if limit not in LIMITS:
+        raise ParameterError("limit", limit, f"must be one of {', '.join(LIMITS)}")
+    dt = DT_DEFAULT if dt is None else dt
+    _positive("dt", dt, "s")
+    _positive("t_max", t_max, "s")
+    if dt > t_max:
+        raise ParameterError("dt", dt, f"must be <= t_max = {t_max} s")
+    eps = EPS_DEFAULT if eps is None else eps
+    _positive("eps", eps, "m or m/s")
+    check_drag(drag)
+    if guidance_drag is not None:
+        check_drag(guidance_drag, "guidance_drag")
+    exhaust_velocity(isp)
+    if len(land_tol) != 2:
+        raise ParameterError("land_tol", land_tol, "must be (position m, velocity m/s)")
+    _positive("land_tol[0]", land_tol[0], "m")
+    _positive("land_tol[1]", land_tol[1], "m/s")
+    if stop not in STOP_MODES:
+        raise ParameterError("stop", stop, f"must be one of {', '.join(STOP_MODES)}")
+    return float(dt), float(eps)
+
+
+def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
+                   law: str = "corrected", disturbance: str = "none",
+                   dist_amplitude: float | np.ndarray | None = None,
+                   thrust_limit: float | None = None, limit: str = "axis",
+                   dt: float | None = None, t_max: float = 120.0, eps: float | None = None,
+                   seed: int = 0, drag: str = "physical", isp: float = ISP,
+                   land_tol: tuple[float, float] = (0.1, 0.1), record: bool = False,
+                   progress: bool = False, guidance_drag: str | None = None,
+                   stop: str = "landing", case_offset: int = 0,
+                   dist_spec: DisturbanceSpec | None = None,
+                   chunk: int = 4096, parallel: bool = True) -> BatchResult:
+    """Fly N cases of seed 000's closed loop with fixed-step RK4 (see the module docstring).
+
+    r0, v0 (N, 3) m and m/s in the landing-site frame, m0 (N,) kg (or one value for all).
+    law: a name in ``sim.laws.LAWS``; gains: the sliding-surface gain set (also defines s2 for
+      diagnostics and the worst-case disturbance; super-twisting ignores it otherwise).
+    disturbance: "none" | "sin" | "random" | "worst" with amplitude ``dist_amplitude`` (m/s^2,
+      scalar or per axis; default 20 = seed 000 (47)); ``seed`` and ``case_offset`` place the
+      cases in a campaign so that random disturbances do not depend on chunking.
+    thrust_limit (N) with limit "axis" (each |F_i|) or "norm" (|F|); None: unlimited.
+    drag: plant drag model ("physical", "printed", "none"); guidance_drag: the a_m the law
+      cancels (default: the same model as the plant).
+    dt: RK4 step (default ``sim.parameters.DT_DEFAULT``); eps: sliding band (default
+      ``EPS_DEFAULT``); t_max: horizon; land_tol: (|r| m, |v| m/s); stop: "landing" ends each
+      case at landing, "t_max" keeps integrating (to observe chattering / s1, s2 after landing).
+    record=True adds ``trajectory`` = {t (S,), r (N,S,3), v (N,S,3), m (N,S), F (N,S,3)}, NaN
+    after a case stopped.  progress=True shows a rich progress bar over chunks of ``chunk``.
+    parallel=False runs the cases on one thread (numba prange otherwise).
+    """
+    r0, v0, m0 = _check_states(r0, v0, m0)
+    dt, eps = check_options(law=law, disturbance=disturbance, thrust_limit=thrust_limit,
+                            limit=limit, dt=dt, t_max=t_max, eps=eps, drag=drag,
+                            guidance_drag=guidance_drag, isp=isp, land_tol=land_tol, stop=stop)
+    n = r0.shape[0]
+    if dist_spec is None:
+        dist_spec = make_disturbance(disturbance, n, amplitude=dist_amplitude, seed=seed,
+                                     case_offset=case_offset)
+    elif dist_spec.coef.shape[0] != n or dist_spec.kind != disturbance:
+        raise ParameterError("dist_spec", dist_spec.kind, f"must be a {disturbance!r} spec "
+                             f"for {n} cases")
+    spec = get_law(law)
+    P = np.ascontiguousarray(spec.param_values(gains), float)
+    SP = np.ascontiguousarray(surface_params(gains), float)
+    kernel = _compile(law, parallel)
+    nsteps = int(math.ceil(t_max / dt - 1e-9))
+    c = exhaust_velocity(isp)
+    fmax = float(thrust_limit) if thrust_limit is not None else np.inf
+    lim = 0 if thrust_limit is None else (1 if limit == "axis" else 2)
+    pkind = DRAG_CODE[drag]
+    gkind = DRAG_CODE[drag if guidance_drag is None else guidance_drag]
+
+    out = {k: np.empty((n, 3)) for k in ("r_land", "v_land", "peak_thrust", "peak_thrust_unsat",
+                                         "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit")}
+    out.update({k: np.empty(n) for k in ("landing_time", "fuel", "time_saturated",
+                                         "min_altitude", "t_end")})
+    out.update({k: np.zeros(n, bool) for k in ("landed", "ground_contact", "nonfinite")})
+    out["y_end"] = np.empty((n, 7))
+    shape_rec = (n, nsteps + 1) if record else (1, 1)
+    rec_y = np.full(shape_rec + (7,), np.nan)
+    rec_F = np.full(shape_rec + (3,), np.nan)
+
+    def run(sl: slice) -> None:
+        ds = dist_spec.take(sl)
+        kernel(r0[sl], v0[sl], m0[sl], P, SP, G_MARS.astype(float), AREA.astype(float), pkind,
+               gkind, c, fmax, lim, KIND_CODE[disturbance], ds.amplitude,
+               np.ascontiguousarray(ds.coef), np.ascontiguousarray(ds.omega),
+               np.ascontiguousarray(ds.phase), dt, nsteps, eps, float(land_tol[0]),
+               float(land_tol[1]), stop == "landing", record,
+               *(out[k][sl] for k in ("landed", "landing_time", "r_land", "v_land", "fuel",
+                                      "peak_thrust", "peak_thrust_unsat", "time_saturated",
+                                      "min_altitude", "ground_contact", "t_s1", "t_s2",
+                                      "t_s1_last_exit", "t_s2_last_exit", "nonfinite",
+                                      "t_end", "y_end")),
+               rec_y[sl] if record else rec_y, rec_F[sl] if record else rec_F)
+
+    chunks = [slice(a, min(a + chunk, n)) for a in range(0, n, chunk)]
+    if progress and len(chunks) > 1:
+        from rich.console import Console
+        from rich.progress import Progress
+
+        with Progress(console=Console(stderr=True), transient=True) as bar:
+            task = bar.add_task(f"simulating {n} cases", total=n)
+            for sl in chunks:
+                run(sl)
+                bar.advance(task, sl.stop - sl.start)
+    else:
+        for sl in chunks:
+            run(sl)
+
+    traj = None
+    if record:
+        traj = {"t": np.arange(nsteps + 1) * dt, "r": rec_y[..., :3], "v": rec_y[..., 3:6],
+                "m": rec_y[..., 6], "F": rec_F}
+    info = {"law": law, "disturbance": disturbance, "dist_amplitude": dist_spec.amplitude.tolist(),
+            "thrust_limit": thrust_limit, "limit": limit if thrust_limit is not None else None,
+            "drag": drag, "guidance_drag": guidance_drag or drag, "isp": isp,
+            "land_tol": list(land_tol), "t_max": t_max, "seed": seed, "stop": stop,
+            "integrator": f"RK4 fixed step dt={dt} s (numba)", "boundary_layer": None}
+    return BatchResult(eps=eps, dt=dt, r0=r0, v0=v0, m0=m0, trajectory=traj, info=info, **out)
+
+
+def result_fields() -> tuple[str, ...]:
+    return tuple(f.name for f in fields(BatchResult))

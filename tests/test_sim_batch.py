@@ -1,0 +1,170 @@
+"""The batched RK4 simulator: cross-checked against the tight solve_ivp reference and against
+independent routes (mass loss vs the integral of |F|/c)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from sim.batch import simulate_batch
+from sim.campaign import table2_states, table3_states
+from sim.disturbances import make_disturbance
+from sim.mars import exhaust_velocity
+from sim.reference import simulate_reference
+from theory.errors import ParameterError
+from theory.gains import default_gains
+from theory.parameters import M0, R0, V0
+
+G = default_gains()
+# Tolerances of the fast integrator (dt = 0.05 s) against the reference (LSODA 1e-10):
+T_TOL = 1e-3  # s, landing time (the workbench target is 0.01 s)
+R_TOL = 1e-3  # m, landing position (target 1 cm)
+FUEL_TOL = 0.1  # kg; RK4 chatter on an axis already at s ~ 0 burns ~0.05 kg extra
+# Velocity at landing: an axis that converged early sits in RK4's chatter around s = 0, whose
+# level at dt = 0.05 s is ~1e-2 m/s on s2 (sim.parameters); the reference sits at ~1e-10.
+V_TOL = 1e-2  # m/s
+
+
+def _agree(b, r, t_tol=T_TOL, r_tol=R_TOL, fuel_tol=FUEL_TOL, v_tol=V_TOL) -> None:
+    np.testing.assert_array_equal(b.landed, r.landed)
+    np.testing.assert_allclose(b.landing_time, r.landing_time, atol=t_tol)
+    np.testing.assert_allclose(b.r_land, r.r_land, atol=r_tol)
+    np.testing.assert_allclose(b.v_land, r.v_land, atol=v_tol)
+    np.testing.assert_allclose(b.fuel, r.fuel, atol=fuel_tol)
+
+
+def test_table1_matches_reference_and_documented_numbers() -> None:
+    kw = dict(drag="none")
+    b = simulate_batch(R0[None], V0[None], [M0], G, **kw)
+    r = simulate_reference(R0[None], V0[None], [M0], G, **kw)
+    _agree(b, r, t_tol=1e-5, r_tol=1e-6, fuel_tol=1e-4)
+    # theory.parameters.DEFAULT_GAINS: lands in 27.4 s, peak 32.4 kN (y), 235 kg
+    assert b.landed[0] and b.landing_time[0] == pytest.approx(27.39, abs=0.01)
+    assert b.peak_thrust[0, 1] == pytest.approx(32.4e3, rel=0.01)
+    assert np.argmax(b.peak_thrust[0]) == 1
+    assert b.fuel[0] == pytest.approx(235.0, abs=0.5)
+    np.testing.assert_allclose(b.peak_thrust, r.peak_thrust, rtol=1e-3)
+    np.testing.assert_allclose(b.t_s1, r.t_s1, atol=0.01, equal_nan=True)
+    assert b.eps == 0.05 and b.dt == 0.05
+    assert not b.ground_contact[0] and not b.nonfinite[0]
+
+
+def test_random_cases_match_reference() -> None:
+    r0, v0, m0 = table2_states(3, seed=11)
+    _agree(simulate_batch(r0, v0, m0, G), simulate_reference(r0, v0, m0, G))
+    r0, v0, m0 = table3_states(2, seed=0)  # includes a stiff case (s1x ~ 0 early)
+    kw = dict(thrust_limit=50e3)
+    _agree(simulate_batch(r0, v0, m0, G, **kw), simulate_reference(r0, v0, m0, G, **kw))
+
+
+def test_disturbed_and_limited_cases_match_reference() -> None:
+    r0, v0, m0 = table2_states(2, seed=5)
+    for dist in ("sin", "random"):
+        kw = dict(disturbance=dist, dist_amplitude=0.5, land_tol=(0.5, 0.5), seed=3)
+        _agree(simulate_batch(r0, v0, m0, G, **kw), simulate_reference(r0, v0, m0, G, **kw),
+               t_tol=0.01, r_tol=0.01, fuel_tol=0.2)
+    kw = dict(thrust_limit=30e3, limit="norm")
+    b = simulate_batch(r0, v0, m0, G, **kw)
+    r = simulate_reference(r0, v0, m0, G, **kw)
+    _agree(b, r, t_tol=0.01, r_tol=0.01, fuel_tol=0.1)
+    assert np.all(b.time_saturated > 0)
+    np.testing.assert_allclose(b.time_saturated, r.time_saturated, atol=0.06)
+    assert np.all(np.linalg.norm(b.peak_thrust, axis=1) <= np.sqrt(3) * 30e3)
+    assert np.all(b.peak_thrust <= 30e3 + 1e-6)
+
+
+def test_mass_loss_equals_integral_of_thrust_over_c() -> None:
+    b = simulate_batch(R0[None], V0[None], [M0], G, record=True, dt=0.01)
+    tr = b.trajectory
+    t, f = tr["t"], tr["F"][0]
+    keep = t <= b.landing_time[0]
+    fn = np.linalg.norm(f[keep], axis=1)
+    burned = np.trapezoid(fn, t[keep]) / exhaust_velocity()
+    m_last = tr["m"][0][keep][-1]
+    assert M0 - m_last == pytest.approx(burned, rel=1e-5)
+    assert b.fuel[0] == pytest.approx(M0 - m_last, abs=0.1)
+
+
+def test_printed_law_does_not_land_in_80s() -> None:
+    b = simulate_batch(R0[None], V0[None], [M0], G, law="printed", t_max=80.0, drag="none")
+    assert not b.landed[0] and np.isnan(b.landing_time[0])
+
+
+def test_nonfinite_is_flagged_not_dropped() -> None:
+    """r_x = 0 exactly with v_x != 0: the corrected law commands -inf on x."""
+    r0 = np.array([[0.0, 1000.0, 1500.0], list(R0)])
+    v0 = np.array([[10.0, -15.0, -75.0], list(V0)])
+    b = simulate_batch(r0, v0, [M0, M0], G)
+    assert b.nonfinite[0] and not b.landed[0] and not b.nonfinite[1] and b.landed[1]
+    assert b.t_end[0] == 0.0
+    lim = simulate_batch(r0, v0, [M0, M0], G, thrust_limit=50e3)
+    assert not lim.nonfinite[0]  # saturated instead
+    assert lim.peak_thrust_unsat[0, 0] == np.inf and lim.peak_thrust[0, 0] == 50e3
+
+
+def test_chunking_and_threads_do_not_change_results() -> None:
+    r0, v0, m0 = table2_states(7, seed=3)
+    kw = dict(disturbance="random", seed=9)
+    a = simulate_batch(r0, v0, m0, G, **kw)
+    b = simulate_batch(r0, v0, m0, G, chunk=3, **kw)
+    assert a.equal(b)
+    # case 5 alone, placed at its campaign index, sees the same disturbance
+    c = simulate_batch(r0[5:6], v0[5:6], m0[5:6], G, case_offset=5, **kw)
+    np.testing.assert_array_equal(c.y_end[0], a.y_end[5])
+    np.testing.assert_array_equal(c.t_s2[0], a.t_s2[5])
+    d = simulate_batch(r0, v0, m0, G, parallel=False, **kw)
+    assert a.equal(d)
+
+
+def test_random_disturbance_is_bounded_and_seeded() -> None:
+    d = make_disturbance("random", 20, amplitude=3.0, seed=1)
+    np.testing.assert_allclose(d.coef.sum(axis=2), 3.0)
+    t = np.linspace(0, 100, 2001)
+    for j in range(20):
+        a = np.array([d.accel(tt, None, j) for tt in t])
+        assert np.abs(a).max() <= 3.0 + 1e-12
+    d2 = make_disturbance("random", 5, amplitude=3.0, seed=1, case_offset=15)
+    np.testing.assert_array_equal(d2.omega, d.omega[15:])
+
+
+def test_worst_case_disturbance_neighborhood_is_invariant() -> None:
+    """a_p = -a_max sgn(s2) (Theorem 3 of seed 000): once |s2_i| is inside (39)'s neighborhood
+    it stays there (up to the RK4 chatter floor, ~1e-2 m/s at dt = 0.05 s)."""
+    from theory.gains import Disturbance
+    from theory.mars_bounds import axis_bounds
+    from theory.mars_mss import surfaces_numeric
+
+    amax = 0.2
+    g = G.with_disturbance(Disturbance(amax, 0.2, 0.1))
+    bound = axis_bounds(g)["x"]["s2_bound"]
+    b = simulate_batch(R0[None], V0[None], [M0], g, disturbance="worst", dist_amplitude=amax,
+                       stop="t_max", t_max=60.0, record=True, drag="none")
+    assert not b.nonfinite[0]
+    tr = b.trajectory
+    s2 = surfaces_numeric()[1](tr["r"][0], tr["v"][0], g.beta1, g.beta2, g.q1, g.q2)
+    for ax in range(3):
+        inside = np.flatnonzero(np.abs(s2[:, ax]) <= bound)
+        assert inside.size, "s2 never reached the neighborhood"
+        assert np.abs(s2[inside[0]:, ax]).max() <= bound + 0.02
+
+
+@pytest.mark.parametrize("kw,name", [
+    (dict(dt=0.0), "dt"), (dict(dt=-1.0), "dt"), (dict(law="pd"), "law"),
+    (dict(disturbance="gust"), "disturbance"), (dict(thrust_limit=-5.0), "thrust_limit"),
+    (dict(limit="box"), "limit"), (dict(eps=0.0), "eps"), (dict(drag="x"), "drag"),
+    (dict(isp=0.0), "isp"), (dict(land_tol=(0.1, -1)), "land_tol"), (dict(t_max=0.0), "t_max"),
+    (dict(dist_amplitude=-1.0, disturbance="sin"), "dist_amplitude"),
+])
+def test_bad_options_raise_parameter_error(kw, name) -> None:
+    with pytest.raises(ParameterError) as e:
+        simulate_batch(R0[None], V0[None], [M0], G, **kw)
+    assert e.value.name.startswith(name)
+
+
+def test_bad_states() -> None:
+    with pytest.raises(ParameterError):
+        simulate_batch(np.zeros((2, 2)), np.zeros((2, 3)), [1.0, 1.0], G)
+    with pytest.raises(ParameterError):
+        simulate_batch(R0[None], V0[None], [-1.0], G)
+    with pytest.raises(ParameterError):
+        simulate_batch(np.array([[np.nan, 0, 0]]), V0[None], [M0], G)

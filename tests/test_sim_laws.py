@@ -1,0 +1,108 @@
+"""The generated (numba) and numpy laws agree with theory's SymPy expressions (exact numbers)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from sim.laws import LAWS, get_law, law_args, numba_law, numpy_law, python_law
+from theory.errors import ParameterError
+from theory.gains import default_gains, gains_from_dict
+from theory.mars_supertwisting import law_supertwisting
+
+RNG = np.random.default_rng(2024)
+
+
+def _points(n: int) -> np.ndarray:
+    """Random (r, v, grav, a_m, m) away from r = 0 (where the laws are singular)."""
+    r = RNG.choice([-1, 1], n) * 10 ** RNG.uniform(-3, 3.5, n)
+    v = RNG.uniform(-200, 200, n)
+    grav = RNG.choice([0.0, -3.7114], n)
+    am = RNG.uniform(-0.5, 0.5, n)
+    m = RNG.uniform(1400, 2000, n)
+    return np.column_stack([r, v, grav, am, m])
+
+
+def _gain_sets():
+    yield default_gains()
+    for _ in range(2):
+        yield gains_from_dict({"gains": {
+            "beta1": float(10 ** RNG.uniform(-1, 1)), "beta2": float(10 ** RNG.uniform(-5, -2)),
+            "alpha1": float(10 ** RNG.uniform(-1, 1)), "alpha2": float(10 ** RNG.uniform(-6, -3)),
+            "q1": float(RNG.uniform(0.5, 0.95)), "q2": float(RNG.uniform(1.1, 2)),
+            "g1": float(RNG.uniform(0.3, 0.95)), "g2": float(RNG.uniform(1.1, 2))}})
+
+
+@pytest.mark.parametrize("name", list(LAWS))
+def test_generated_law_matches_symbolic(name: str) -> None:
+    spec = get_law(name)
+    expr = spec.expr()
+    args = law_args(spec)
+    nb = numba_law(name)
+    npf = numpy_law(name)
+    for g in _gain_sets():
+        P = spec.param_values(g)
+        for pt in _points(15):
+            ax = int(RNG.integers(3))
+            vals = [*pt, *P[ax]]
+            exact = expr.subs({s: sp.Float(repr(float(x)), 40) for s, x in zip(args, vals,
+                                                                               strict=True)})
+            exact = float(sp.N(exact, 30))
+            got_nb = nb(*pt, P, ax)
+            got_py = python_law(name)(*vals)
+            r3 = np.zeros(3)
+            v3 = np.zeros(3)
+            r3[ax], v3[ax] = pt[0], pt[1]
+            g3 = np.full(3, pt[2])
+            a3 = np.full(3, pt[3])
+            with np.errstate(divide="ignore", invalid="ignore"):  # other axes sit at r = 0
+                got_np = npf(r3, v3, g3, a3, pt[4], P)[ax]
+            tol = 1e-10 * max(1.0, abs(exact))
+            assert abs(got_nb - exact) <= tol, (name, vals, got_nb, exact)
+            assert abs(got_py - exact) <= tol
+            assert abs(got_np - exact) <= tol
+
+
+def test_supertwisting_reading() -> None:
+    """(46) as read: a = -(B1/2 |r|^(-1/2) v + B2 sgn r)/m - g."""
+    r, v, grav, m = 4.0, 2.0, -3.7114, 1900.0
+    B1, B2 = 1200.0, 5500.0
+    expect = -(B1 / 2 * v / 2.0 + B2) / m - grav
+    f = numba_law("super-twisting")
+    P = np.array([[B1, B2]] * 3)
+    assert f(r, v, grav, 0.0, m, P, 0) == pytest.approx(expect, rel=1e-14)
+    assert "a_m" not in str(law_supertwisting())  # (46) does not cancel drag
+
+
+def test_singular_point_is_not_smoothed() -> None:
+    """The corrected law's |s1|^(q1-1) v is infinite at s1 = 0, v != 0; NaN at (0, 0)."""
+    f = numba_law("corrected")
+    P = get_law("corrected").param_values(default_gains())
+    assert f(0.0, 2.0, -3.7, 0.0, 1900.0, P, 0) == -np.inf
+    assert f(0.0, -2.0, -3.7, 0.0, 1900.0, P, 0) == np.inf
+    assert np.isnan(f(0.0, 0.0, -3.7, 0.0, 1900.0, P, 0))
+
+
+def test_unknown_law() -> None:
+    with pytest.raises(ParameterError, match="law"):
+        get_law("bang-bang")
+
+
+@pytest.mark.slow
+def test_register_a_new_law() -> None:
+    """The documented way to add a law: a PD law a = -g - a_m - k1 r - k2 v lands Table I."""
+    from sim.batch import simulate_batch
+    from sim.laws import LAWS, LawSpec, register_law
+    from theory import mars_mss as mss
+    from theory.parameters import M0, R0, V0
+
+    k1, k2 = sp.symbols("k1 k2", positive=True)
+    register_law(LawSpec("pd-test", lambda: -mss.grav - mss.am - k1 * mss.r - k2 * mss.v,
+                         (k1, k2), lambda g: np.tile([0.04, 0.4], (3, 1)), "PD (test)"))
+    try:
+        b = simulate_batch(R0[None], V0[None], [M0], default_gains(), law="pd-test",
+                           land_tol=(1.0, 1.0))
+        assert b.landed[0]
+    finally:
+        LAWS.pop("pd-test")
