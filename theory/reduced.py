@@ -60,18 +60,23 @@ def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: flo
     s1 = np.zeros(n_out)
     s2 = np.zeros(n_out)
 
+    # The sign of s2 (then s1) is frozen at its initial value within a phase, so the right side
+    # is smooth through the event (the power (g2-g1)/(1-g1) > 1) and root finding is reliable.
+    sgn2 = float(np.sign(s2_0))
+    sgn1 = 1.0
+
     def phase1(t, y):
         x1, w2 = y
-        z2 = _sig(w2, 1 / (1 - g1))
+        z2 = sgn2 * abs(w2) ** (1 / (1 - g1))
         d1 = z2 - b1 * _sig(x1, q1) - b2 * _sig(x1, q2)
-        dw = (1 - g1) * (-a1 * np.sign(w2) - a2 * _sig(z2, g2 - g1))
+        dw = (1 - g1) * (-a1 * sgn2 - a2 * sgn2 * abs(z2) ** (g2 - g1))
         if law == "printed" and x1 != 0.0:
             dw += (1 - g1) * (b1 * q1 * abs(x1) ** (q1 - 1) + b2 * q2 * abs(x1) ** (q2 - 1)) * w2
         return [d1, dw]
 
     def phase2(t, y):
-        z1 = _sig(y[0], 1 / (1 - q1))
-        return [(1 - q1) * (-b1 * np.sign(y[0]) - b2 * _sig(z1, q2 - q1))]
+        z1 = abs(y[0]) ** (1 / (1 - q1))
+        return [(1 - q1) * sgn1 * (-b1 - b2 * z1 ** (q2 - q1))]
 
     def hit(i):
         def ev(t, y):
@@ -97,6 +102,7 @@ def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: flo
             s1[m], s2[m] = y[0], _sig(y[1], 1 / (1 - g1))
         x1 = float(sol.y[0, -1])
     if t0 < t_end and x1 != 0.0:
+        sgn1 = float(np.sign(x1))
         sol = solve_ivp(phase2, (t0, t_end), [_sig(x1, 1 - q1)], method="LSODA",
                         dense_output=True, rtol=1e-11, atol=1e-14, max_step=t_end / 500,
                         events=hit(0))
