@@ -108,7 +108,7 @@ def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: flo
                         events=hit(0))
         if sol.status < 0:
             raise RuntimeError(f"reference integration failed: {sol.message}")
-        m = (ts > t0) & (ts <= sol.t[-1])
+        m = (ts >= t0) & (ts <= sol.t[-1])
         if m.any():
             s1[m] = _sig(sol.sol(ts[m])[0], 1 / (1 - q1))
     v = s2 - b1 * _sig(s1, q1) - b2 * _sig(s1, q2)
