@@ -16,6 +16,7 @@ import pytest
 from hypothesis import assume, event, given, settings, target
 from strategies import gain_dicts, gain_sets, positions, state_batches
 
+
 from theory.gains import gains_from_dict
 from theory.mars_bounds import axis_bounds, reaching_time
 from theory.mars_claims import t2_claim
@@ -51,10 +52,15 @@ def _check(g, r0, v0, claims):
     return out
 
 
+def scaled(n: int) -> int:
+    """Per-test example counts are sized for the ci/dev profiles (30 examples); the thorough
+    profile (``--hypothesis-profile=thorough``) scales every one of them up in proportion."""
+    return max(n, n * settings.default.max_examples // 30)
+
 # --- (a) reaching law (16) alone ------------------------------------------------------------
 
 @given(gd=gain_dicts(disturbance=False, sim=False), s1_0=positions)
-@settings(max_examples=20)
+@settings(max_examples=scaled(20))
 def test_reaching_law_16_reaches_zero_by_T_s0_le_T1_exact_le_T1_polyakov(gd, s1_0):
     """(16) from s1(0) with s2 = 0: s1 = 0 at T(s1(0)) <= T1_exact <= T1_polyakov (18)."""
     g = gains_from_dict(gd)
@@ -80,7 +86,7 @@ def test_reaching_law_16_reaches_zero_by_T_s0_le_T1_exact_le_T1_polyakov(gd, s1_
 
 
 @given(g=gain_sets(disturbance=True), states=state_batches(1, 3))
-@settings(max_examples=6)
+@settings(max_examples=scaled(6))
 def test_reaching_law_16_sim(g, states):
     """(16)/(18) in the simulator: started on s2 = 0 (21), |s1_i| <= eps by T1_exact."""
     assume(_max_bound(g, "T1_exact") <= T_CAP)
@@ -90,7 +96,7 @@ def test_reaching_law_16_sim(g, states):
 # --- (b), (c) no disturbance ----------------------------------------------------------------
 
 @given(g=gain_sets(disturbance=True), states=state_batches(1, 3))
-@settings(max_examples=8)
+@settings(max_examples=scaled(8))
 def test_s2_reaches_eps_within_T2_26_and_lands_within_T2_plus_T1(g, states):
     """(26): |s2_i| <= eps by T2_exact; landing: |s1_i| <= eps and |v_i| <= eps' by
     T2_exact + T1_exact (the sound sum, not the paper's max) and never leaves."""
@@ -101,7 +107,7 @@ def test_s2_reaches_eps_within_T2_26_and_lands_within_T2_plus_T1(g, states):
 # --- (d) bounded disturbance ------------------------------------------------------------------
 
 @given(g=gain_sets(disturbance=True), states=state_batches(1, 2))
-@settings(max_examples=5)
+@settings(max_examples=scaled(5))
 def test_disturbed_neighbourhoods_39_31_within_40_45(g, states):
     """|a_p,i| <= a_max, worst case a_p = -a_max sgn(s2) and random: |s2_i| enters (39) within
     T2_practical_exact (40) and never leaves; |s1_i| enters (31) within T2_practical_exact +
@@ -112,7 +118,7 @@ def test_disturbed_neighbourhoods_39_31_within_40_45(g, states):
 
 @pytest.mark.slow
 @given(g=gain_sets(disturbance=True), states=state_batches(4, 16))
-@settings(max_examples=60)
+@settings(max_examples=scaled(60))
 def test_all_claims_slow(g, states):
     """Every claim of tuning.verify on larger batches and more gain sets."""
     assume(_max_bound(g, "landing_time_bound_disturbed") <= T_CAP_DISTURBED)
