@@ -16,7 +16,6 @@ import pytest
 from hypothesis import assume, event, given, settings, target
 from strategies import gain_dicts, gain_sets, positions, state_batches
 
-
 from theory.gains import gains_from_dict
 from theory.mars_bounds import axis_bounds, reaching_time
 from theory.mars_claims import t2_claim
