@@ -7,7 +7,6 @@ formula is taken as true.  ``all_claims()`` lists every claim in report order.
 from __future__ import annotations
 
 import itertools
-import math
 import random
 from functools import cache
 
@@ -20,7 +19,7 @@ from theory.claims import Claim, Step, combine, numeric_search, prove_nonneg, pr
 from theory.mars_bounds import tf_min, tf_min_printed
 from theory.parameters import G_MARS, M0, R0, THRUST_MAX_AXIS, V0
 from theory.reduced import surface_trajectory, trajectory
-from theory.settling import exact_bound, polyakov_bound
+from theory.settling import polyakov_bound
 from theory.symbolic import sig
 
 r, v, ap = M.r, M.v, M.ap
@@ -240,8 +239,8 @@ def v2dot_claim(law: str) -> Claim:
     extra = _surface_coords(_dbeta()) * S2**2
     steps = [prove_branches(resid - extra, (r, S2), "V2' - (29) = (beta1 q1|s1|^(q1-1) + "
                             "beta2 q2|s1|^(q2-1)) s2^2 under the printed law (25)"),
-             prove_nonneg(sp.Abs(r) ** 0 * b1 * q1 * sp.Symbol("x", positive=True) ** (q1 - 1)
-                          * S2**2, "the extra term is >= 0 (it destabilises s2)")]
+             prove_nonneg(_dbeta().subs(r, sp.Symbol("x", positive=True)) * S2**2,
+                          "the extra term is >= 0 (it destabilises s2)")]
     pt = {**PT, r: sp.Integer(1), S2: sp.Integer(1)}
     val = _at(resid, pt)
     ce = {"s1": 1, "s2": 1, "beta1": 1, "beta2": 1, "q1": "1/2", "q2": 2, "alpha1": 1,
@@ -368,11 +367,9 @@ def remark1_claim() -> Claim:
     a_max = THRUST_MAX_AXIS / M0
     printed = tf_min_printed(R0, V0, a_max, G_MARS)
     derived = tf_min(R0, V0, a_max, G_MARS)
-    with np.errstate(invalid="ignore"):
-        tf1_y = (-V0[1] + math.sqrt(V0[1] ** 2 - 2 * a_max * R0[1])
-                 if V0[1] ** 2 - 2 * a_max * R0[1] >= 0 else float("nan"))
     ce = {"axis": "y (Table I)", "r0": float(R0[1]), "v0": float(V0[1]), "a_max": a_max,
-          "v0^2 - 2 a_max r0": float(V0[1] ** 2 - 2 * a_max * R0[1]), "tf1": tf1_y}
+          "v0^2 - 2 a_max r0": float(V0[1] ** 2 - 2 * a_max * R0[1]),
+          "printed tf": float(printed[1])}
     steps = [
         Step("tf1 = (-v0 + sqrt(v0^2 - 2 a_max r0))/a_max is the least time to reach r = 0",
              "exact evaluation", "refuted", f"undefined for r0 > 0: {ce}"),
@@ -454,7 +451,6 @@ def v2dot_disturbed_claim(law: str) -> Claim:
 @cache
 def s2_neighborhood_claim() -> Claim:
     x = sp.Symbol("x", positive=True)  # |s2|
-    Mi = sp.Symbol("M", positive=True)
     # If (1-theta) alpha1 x^g1 >= a_max then V2' <= -theta(...): pure algebra on the bound.
     bound = -a1 * x ** (g1 + 1) - a2 * x ** (g2 + 1) + amax * x
     target = -th1 * (a1 * x ** (g1 + 1) + a2 * x ** (g2 + 1))
@@ -472,7 +468,6 @@ def s2_neighborhood_claim() -> Claim:
     remark = Step("(37)-(38) apply Theorem 1 with eta = a_max|s2x|, which is not constant as "
                   "Theorem 1 requires", "hypothesis check", "refuted",
                   "eta depends on the state; the conclusion (39) holds by the direct argument")
-    del Mi
     return Claim("s2-neighborhood", "(37)-(39)", "Neighbourhood of s2 under bounded disturbance",
                  "|s2i| <= min{(a_max/((1-theta1)alpha1i))^(1/g1), (a_max/((1-theta1)alpha2i))"
                  "^(1/g2)}", "Holds for the corrected law (direct proof; the paper's use of "
@@ -576,5 +571,3 @@ def all_claims() -> list[Claim]:
               t1_practical_claim(), t3_claim(), paper_numbers_claim()]
     return claims
 
-
-__all__ = ["all_claims", "exact_bound"]

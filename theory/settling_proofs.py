@@ -70,7 +70,6 @@ def lemma1() -> Claim:
 @cache
 def lemma2() -> Claim:
     p_, g_ = p_sym, g_sym
-    full = (a * V**p_ + b * V**g_) ** k
     steps = [
         prove_nonneg(b * V**g_, "b V^g >= 0, so (a V^p + b V^g)^k >= (a V^p)^k (x -> x^k "
                      "increasing for k > 0)"),
@@ -82,7 +81,6 @@ def lemma2() -> Claim:
         _integral_step((b * V**g_) ** (-k), 1, sp.oo, 1 / (b**k * (g_ * k - 1)),
                        "int_1^oo dV/(b V^g)^k = 1/(b^k (g k - 1))  (g k > 1)"),
     ]
-    del full
     return Claim("lemma2", "(2)-(3)", "Lemma 2: fixed-time settling bound (Polyakov form)",
                  "V' <= -(a V^p + b V^g)^k, pk<1<gk  =>  T <= 1/(a^k(1-pk)) + 1/(b^k(gk-1))",
                  "Holds; it splits the integral at V = 1, so it is not tight and not invariant "
