@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import html
 import json
+from collections.abc import Sequence
+from dataclasses import dataclass
 from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
@@ -40,6 +42,19 @@ BOUND_LABELS = [
     ("T3_paper", "(32) as printed", "s"), ("v_bound", "|v| inside both neighbourhoods", "m/s"),
     ("landing_time_bound_disturbed", "landing bound under disturbance (40*)+(45*)", "s"),
 ]
+
+
+@dataclass(frozen=True)
+class Section:
+    """A table section computed outside ``theory`` (e.g. a simulated comparison) for the report.
+
+    Plain strings only, so that ``theory`` renders it without importing the layers above."""
+
+    title: str
+    paragraphs: tuple[str, ...]
+    columns: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+    image: str | None = None  # path relative to the report
 
 
 def lgw_version() -> str:
@@ -81,7 +96,23 @@ def _ce(c: Claim) -> str:
     return json.dumps(c.counterexample, sort_keys=True, default=str) if c.counterexample else ""
 
 
-def render_markdown(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, float]]) -> str:
+def _md_sections(sections: Sequence[Section]) -> list[str]:
+    L: list[str] = []
+    for sec in sections:
+        L += ["", f"## {sec.title}", ""]
+        for row in (sec.columns, *sec.rows):
+            L.append("| " + " | ".join(c.replace("|", "\\|") for c in row) + " |")
+            if row is sec.columns:
+                L.append("|" + "---|" * len(sec.columns))
+        for par in sec.paragraphs:
+            L += ["", par]
+        if sec.image:
+            L += ["", f"![{sec.title}]({sec.image})"]
+    return L
+
+
+def render_markdown(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, float]],
+                    sections: Sequence[Section] = ()) -> str:
     L = ["# Seed 000: derivation report", "",
          f"lgw {lgw_version()}.  Every statement below is derived from the guidance law itself "
          "(SymPy) and checked; verdicts: proved / checked / refuted / unproven.", "",
@@ -114,6 +145,7 @@ def render_markdown(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, f
             L += ["", f"Counterexample: `{_ce(c)}`"]
         if c.numbers:
             L += ["", f"Numbers: `{json.dumps(c.numbers, sort_keys=True, default=str)}`"]
+    L += _md_sections(sections)
     L += ["", "## References", ""] + [f"- {ref}" for ref in REFERENCES] + [""]
     return "\n".join(L)
 
@@ -127,9 +159,10 @@ def tex(s: str) -> str:
     return "".join(_TEX.get(ch, ch) for ch in s)
 
 
-def render_latex(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, float]]) -> str:
+def render_latex(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, float]],
+                 sections: Sequence[Section] = ()) -> str:
     L = [r"\documentclass[10pt]{article}", r"\usepackage[margin=2cm]{geometry}",
-         r"\usepackage{longtable}", r"\begin{document}",
+         r"\usepackage{longtable}", r"\usepackage{graphicx}", r"\begin{document}",
          r"\section*{Seed 000: derivation report}",
          tex(f"lgw {lgw_version()}. Verdicts: proved / checked / refuted / unproven."),
          r"\subsection*{Gain set}", r"\begin{tabular}{ll}"]
@@ -161,13 +194,23 @@ def render_latex(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, floa
                      + tex(s.detail))
         if c.counterexample:
             L.append(r"\paragraph{Counterexample.} \texttt{" + tex(_ce(c)) + "}")
+    for sec in sections:
+        L += [r"\subsection*{" + tex(sec.title) + "}", r"{\scriptsize",
+              r"\begin{longtable}{" + "l" * len(sec.columns) + "}",
+              " & ".join(tex(c) for c in sec.columns) + r" \\ \hline"]
+        L += [" & ".join(tex(c) for c in row) + r" \\" for row in sec.rows]
+        L += [r"\end{longtable}}"] + [tex(p) + "\n" for p in sec.paragraphs]
+        if sec.image:
+            L.append(r"\IfFileExists{" + sec.image + r"}{\includegraphics[width=\linewidth]{"
+                     + sec.image + "}}{}")
     L += [r"\section*{References}", r"\begin{enumerate}"]
     L += [r"\item " + tex(ref) for ref in REFERENCES]
     L += [r"\end{enumerate}", r"\end{document}", ""]
     return "\n".join(L)
 
 
-def render_html(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, float]]) -> str:
+def render_html(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, float]],
+                sections: Sequence[Section] = ()) -> str:
     e = html.escape
     L = ["<!DOCTYPE html>", "<html><head><meta charset='utf-8'><title>Seed 000 derivation report"
          "</title><style>body{font-family:sans-serif;max-width:60em;margin:auto}"
@@ -201,6 +244,14 @@ def render_html(claims: list[Claim], g: Gains, bounds: dict[str, dict[str, float
         L += [f"<p>Remark: [{s.status}] {e(s.statement)} — {e(s.detail)}</p>" for s in c.remarks]
         if c.counterexample:
             L.append(f"<p>Counterexample: <code>{e(_ce(c))}</code></p>")
+    for sec in sections:
+        L += [f"<h2>{e(sec.title)}</h2><table><tr>"
+              + "".join(f"<th>{e(c)}</th>" for c in sec.columns) + "</tr>"]
+        L += ["<tr>" + "".join(f"<td>{e(c)}</td>" for c in row) + "</tr>" for row in sec.rows]
+        L.append("</table>")
+        L += [f"<p>{e(p)}</p>" for p in sec.paragraphs]
+        if sec.image:
+            L.append(f"<p><img src='{e(sec.image)}' alt='{e(sec.title)}' width='100%'></p>")
     L += ["<h2>References</h2><ol>"] + [f"<li>{e(ref)}</li>" for ref in REFERENCES]
     L += ["</ol></body></html>", ""]
     return "\n".join(L)
