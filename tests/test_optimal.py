@@ -162,7 +162,8 @@ def test_cli_json(tmp_path) -> None:
 
 
 def test_compare_optimal_rows_and_figure(tmp_path) -> None:
-    from tuning.cmd_compare import _figure, _fmt, _optimal_rows
+    from tuning.compare import _fmt, _optimal_rows
+    from tuning.compare import figure as _figure
 
     rows, trajs = _optimal_rows(1.0, "none", 30)
     assert [r["disturbance"] for r in rows] == ["none", "sin"]

@@ -17,19 +17,38 @@ from tuning.options import gains_option, plant_argument, resolve_gains
 @gains_option
 @click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
               required=True, help="directory to write report.md, report.tex, report.html")
-def command(plant: str, gains_path: Path | None, out_dir: Path) -> None:
+@click.option("--compare/--no-compare", "with_compare", default=True, show_default=True,
+              help="include seed 000 Part 1's simulated comparison (lgw compare, ~20 s) and "
+                   "its figure compare.png")
+@click.option("--tuned", "tuned_paths", multiple=True,
+              type=click.Path(dir_okay=False, path_type=Path),
+              help="tuned gains file(s) for the comparison (default: the shipped one)")
+def command(plant: str, gains_path: Path | None, out_dir: Path, with_compare: bool,
+            tuned_paths: tuple[Path, ...]) -> None:
     """Derive and check every claim of seed 000 and write the report for a gain set."""
     g = resolve_gains(gains_path)  # validated before anything is written
+    sections = []
+    if with_compare:
+        from tuning.compare import figure, report_section, run_comparison, tuned_sets
+
+        tuned = tuned_sets(list(tuned_paths))
+        name = "default gains" if gains_path is None else f"gains {gains_path.name}"
+        comparison, trajs = run_comparison(g, tuned, gains_name=name)
+        out_dir.mkdir(parents=True, exist_ok=True)
+        figure(trajs, comparison["amplitude"], out_dir / "compare.png")
+        sections.append(report_section(comparison, "compare.png"))
     bounds = axis_bounds(g)
     claims = all_claims()
-    docs = {"report.md": render_markdown(claims, g, bounds),
-            "report.tex": render_latex(claims, g, bounds),
-            "report.html": render_html(claims, g, bounds)}
+    docs = {"report.md": render_markdown(claims, g, bounds, sections),
+            "report.tex": render_latex(claims, g, bounds, sections),
+            "report.html": render_html(claims, g, bounds, sections)}
     out_dir.mkdir(parents=True, exist_ok=True)
     for name, text in docs.items():
         (out_dir / name).write_text(text)
     counts: dict[str, int] = {}
     for c in claims:
         counts[c.verdict] = counts.get(c.verdict, 0) + 1
-    click.echo(f"wrote {', '.join(str(out_dir / n) for n in docs)}")
+    written = [str(out_dir / n) for n in docs] + ([str(out_dir / "compare.png")] if sections
+                                                  else [])
+    click.echo(f"wrote {', '.join(written)}")
     click.echo("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
