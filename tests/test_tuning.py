@@ -208,3 +208,28 @@ def test_cli_tf_below_remark1_exit_3_names_minimum(tmp_path: Path) -> None:
     assert p.returncode == 3, p.stderr
     assert "Remark 1" in p.stderr and "nothing written" in p.stderr
     assert not out.exists() and list(tmp_path.iterdir()) == []
+
+
+def test_whole_box_is_not_certifiable_where_the_command_is_infinite() -> None:
+    """Table III contains r_x = 0 with v_x != 0: the corrected law's command is infinite there
+    (checked by evaluating the generated law), and lgw tune says so; Table II's box does not."""
+    from theory.gains import default_gains
+    from theory.mars_mss import law_numeric
+    from theory.parameters import G_MARS
+    from tuning.cmd_tune import whole_box_note
+    from tuning.design import envelope_from_name
+
+    env = envelope_from_name("table3")
+    x = env.singular_state()
+    assert x is not None and env.in_box(x).all()
+    i = int(np.flatnonzero(x[:3] == 0.0)[0])
+    g = default_gains()
+    with np.errstate(all="ignore"):
+        a = law_numeric("corrected")(x[:3], x[3:6], G_MARS, np.zeros(3), g.beta1, g.beta2,
+                                     g.alpha1, g.alpha2, g.q1, g.q2, g.g1, g.g2)
+    assert np.isinf(a[i])
+    note = whole_box_note(env, 0.0, 5e4, "axis")
+    assert note is not None and "r_i = 0, v_i != 0" in note
+    assert "2.0 %" in whole_box_note(env, 0.02, 5e4, "axis")
+    t2 = envelope_from_name("table2")
+    assert t2.singular_state() is None and whole_box_note(t2, 0.0, 5e4, "axis") is None

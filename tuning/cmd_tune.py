@@ -21,6 +21,7 @@ from tuning.design import (
     BOUNDS,
     LIMITS,
     OBJECTIVES,
+    Envelope,
     Request,
     envelope_from_name,
     nearest_feasible_tf,
@@ -35,6 +36,25 @@ EXIT_INFEASIBLE = 3
 def _fmt_state(x: np.ndarray) -> str:
     return (f"r0 = {np.round(x[:3], 1).tolist()} m, v0 = {np.round(x[3:6], 1).tolist()} m/s, "
             f"m0 = {x[6]:.0f} kg")
+
+
+def whole_box_note(env: Envelope, forced_fraction: float, thrust_max: float,
+                   limit: str) -> str | None:
+    """Why no gain set certifies the whole box (None when nothing in it forbids it)."""
+    why = []
+    x = env.singular_state()
+    if x is not None:
+        why.append(f"it contains states with r_i = 0, v_i != 0 (e.g. {_fmt_state(x)}), where "
+                   "the command is infinite at t = 0")
+    if forced_fraction > 0.0:
+        why.append(f"{100 * forced_fraction:.1f} % of it cannot stop short of the target on "
+                   f"some axis within {thrust_max:g} N ({limit}), so every law crosses r_i = 0 "
+                   "with v_i != 0, where the command is infinite")
+    if not why:
+        return None
+    return ("no gain set certifies the whole box: " + "; ".join(why) + " (the corrected law's "
+            "-beta1 q1 |s1|^(q1-1) v, claim bounded-command-corrected in lgw report); the "
+            "keep-out removes those states")
 
 
 @click.command("tune")
@@ -78,8 +98,11 @@ def command(plant: str, tf: float, thrust_max: float, limit: str, envelope: str,
     env = envelope_from_name(envelope, keep_out=keep_out, brake_fraction=brake_fraction)
     res = tune(req, env, seed=seed, fast=fast)
     cmd = "lgw tune mars " + " ".join(sys.argv[3:] if len(sys.argv) > 3 else [])
+    note = whole_box_note(env, res.forced_fraction, req.thrust_max, req.limit)
     if not res.feasible:
         click.echo(f"infeasible: {res.reason}", err=True)
+        if note:
+            click.echo(f"note: {note}", err=True)
         if not no_suggest:
             start = replace(req, tf=max(req.tf, res.tf_min_envelope))
             tf_ok, r_ok = nearest_feasible_tf(start, env, seed=seed)
@@ -120,4 +143,6 @@ def command(plant: str, tf: float, thrust_max: float, limit: str, envelope: str,
     click.echo(f"envelope {env.name}: {100 * res.excluded_fraction:.1f} % of the box is in the "
                f"keep-out (not covered); {100 * res.forced_fraction:.1f} % cannot be stopped "
                f"short of the target by any law within the limit")
+    if note:
+        click.echo(f"note: {note}")
     click.echo(f"tuned in {res.elapsed:.1f} s")

@@ -145,6 +145,22 @@ class Envelope:
         return np.any([np.all((x >= lo - 1e-9) & (x <= hi + 1e-9), axis=1)
                        for lo, hi in self.boxes], axis=0)
 
+    def singular_state(self) -> np.ndarray | None:
+        """A state (7,) of the envelope with r_i = 0 and v_i != 0 on some axis, where the
+        corrected law's command -beta1 q1 |s1|^(q1-1) v is infinite at t = 0; None if there
+        is none (the keep-out excludes such states: |r_i| < d_keep)."""
+        if self.states is not None:
+            bad = np.any((self.states[:, :3] == 0.0) & (self.states[:, 3:6] != 0.0), axis=1)
+            return self.states[np.argmax(bad)].copy() if bad.any() else None
+        for lo, hi in self.boxes:
+            for i in range(3):
+                vi = hi[3 + i] if abs(hi[3 + i]) >= abs(lo[3 + i]) else lo[3 + i]
+                if lo[i] <= 0.0 <= hi[i] and vi != 0.0:
+                    x = 0.5 * (lo + hi)
+                    x[i], x[3 + i] = 0.0, vi
+                    return x
+        return None
+
     def a_brake(self, thrust_max: float, limit: str) -> np.ndarray:
         """Per-axis deceleration available toward rest at the heaviest mass (m/s^2).
 

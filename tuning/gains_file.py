@@ -101,8 +101,10 @@ def certificate(res: TuneResult, req: Request, env: Envelope, command: str = "")
         "theta1": req.theta1, "theta2": req.theta2, "accept_peak_fraction": req.margin,
     }
     env_d = env.to_dict()
+    whole = res.forced_fraction == 0.0 and env.singular_state() is None
     env_d.update(excluded_fraction=res.excluded_fraction, forced_overshoot_fraction=
-                 res.forced_fraction, tf_min_remark1=res.tf_min_envelope,
+                 res.forced_fraction, whole_box_certifiable=whole,
+                 tf_min_remark1=res.tf_min_envelope,
                  tf_min_state=_state(res.tf_min_state), tf_min_a_max=req.thrust_max / M_DRY)
     cert["envelope"] = env_d
     if res.gains is not None:
