@@ -73,7 +73,8 @@ LAWS: dict[str, LawSpec] = {}
 def register_law(spec: LawSpec) -> None:
     """Add (or replace) a law in the registry; see the module docstring."""
     LAWS[spec.name] = spec
-    for fn in ("python_law", "numba_law", "numpy_law"):  # defined below; empty at import
+    # defined below; not yet at import
+    for fn in ("python_law", "python_law_origin", "numba_law", "numpy_law"):
         if fn in globals():
             globals()[fn].cache_clear()
 
@@ -147,6 +148,25 @@ def python_law(name: str) -> Callable[..., float]:
     return sp.lambdify(law_args(spec), explog(spec.expr()), modules=_NB_MODULES, cse=True)
 
 
+def origin_expr(spec: LawSpec) -> sp.Expr:
+    """The law on an axis at its equilibrium r = v = 0: the expression with v = 0 substituted.
+
+    At r = v = 0 the singular terms of the registered laws are 0 * inf in floating point (the
+    corrected law's beta1 q1 |s1|^(q1-1) v, (46)'s |s|^(-1/2) s').  Their value along the solution
+    through that point is 0: the axis sits at its equilibrium (s1 = s2 = 0 for all t, v = 0
+    identically), so the command is the limit along v = 0, i.e. the law with v := 0 (for the
+    corrected law -g - a_m; for (46) -g).  r = 0 with v != 0 stays a genuine +-inf.
+    """
+    return spec.expr().subs(mss.v, 0)
+
+
+@cache
+def python_law_origin(name: str) -> Callable[..., float]:
+    """``python_law`` of ``origin_expr``: the law at r = v = 0, same arguments."""
+    spec = get_law(name)
+    return sp.lambdify(law_args(spec), explog(origin_expr(spec)), modules=_NB_MODULES, cse=True)
+
+
 @cache
 def numba_law(name: str) -> Callable[..., float]:
     """The law compiled for one axis: f(r, v, grav, a_m, m, P, i) with P[i] the axis's parameters.
@@ -156,13 +176,19 @@ def numba_law(name: str) -> Callable[..., float]:
 
     error_model="numpy": 0 ** (negative) and x/0 give inf (not an exception), so the corrected
     law at s1 = 0, v != 0 returns +-inf; the simulator saturates it (limits on) or flags the case.
+    At r = v = 0 exactly (an axis at its equilibrium) the law is evaluated with v = 0 substituted
+    symbolically (``origin_expr``): the limit along the solution, finite, instead of 0 * inf.
     """
     spec = get_law(name)
     core = numba.njit(python_law(name), error_model="numpy", fastmath=FASTMATH)
+    core0 = numba.njit(python_law_origin(name), error_model="numpy", fastmath=FASTMATH)
     k = len(spec.params)
+    pars = ", ".join(f"P[i, {j}]" for j in range(k))
     src = (f"def law_p(r, v, grav, a_m, m, P, i):\n"
-           f"    return core(r, v, grav, a_m, m, {', '.join(f'P[i, {j}]' for j in range(k))})\n")
-    ns: dict = {"core": core}
+           f"    if r == 0.0 and v == 0.0:\n"
+           f"        return core0(r, v, grav, a_m, m, {pars})\n"
+           f"    return core(r, v, grav, a_m, m, {pars})\n")
+    ns: dict = {"core": core, "core0": core0}
     exec(src, ns)  # noqa: S102  (source generated above from the registry, no user text)
     return numba.njit(ns["law_p"], error_model="numpy")
 
@@ -175,22 +201,34 @@ def numpy_law(name: str) -> Callable[..., np.ndarray]:
     theory.mars_supertwisting.supertwisting_numeric for (46)) where it exists.
     """
     spec = get_law(name)
+    from theory.symbolic import LAMBDIFY_MODULES
+    modules = [{"sign": np.sign}] + LAMBDIFY_MODULES
+    fn0 = sp.lambdify(law_args(spec), origin_expr(spec), modules=modules)
+
+    def at_origin(a, r, v, grav, a_m, m, P):
+        # axes exactly at r = v = 0: the limit along the solution (``origin_expr``), not 0 * inf
+        r = np.asarray(r, float)
+        v = np.asarray(v, float)
+        at0 = (r == 0.0) & (v == 0.0)
+        if not np.any(at0):
+            return a
+        a0 = fn0(r, v, grav, a_m, np.asarray(m, float)[..., None], *P.T)
+        return np.where(at0, a0, a)
+
     if name in mss.LAWS:
         fn = mss.law_numeric(name)
 
         def f(r, v, grav, a_m, m, P):
-            del m
-            return fn(r, v, grav, a_m, *P.T)
+            return at_origin(fn(r, v, grav, a_m, *P.T), r, v, grav, a_m, m, P)
         return f
     if name == "super-twisting":
         fn = st.supertwisting_numeric()
     else:
-        from theory.symbolic import LAMBDIFY_MODULES
-        fn = sp.lambdify(law_args(spec), spec.expr(),
-                         modules=[{"sign": np.sign}] + LAMBDIFY_MODULES)
+        fn = sp.lambdify(law_args(spec), spec.expr(), modules=modules)
 
     def g(r, v, grav, a_m, m, P):
-        return fn(r, v, grav, a_m, np.asarray(m, float)[..., None], *P.T)
+        a = fn(r, v, grav, a_m, np.asarray(m, float)[..., None], *P.T)
+        return at_origin(a, r, v, grav, a_m, m, P)
     return g
 
 

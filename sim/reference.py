@@ -68,10 +68,44 @@ class ClosedLoopRHS:
         return plant_rhs(t, y, f, drag=self.drag, isp=self.isp, disturbance_accel=ap)
 
 
+class _NonFinite(Exception):  # noqa: N818  (control flow, not an error)
+    """The closed-loop derivative is not finite at (t, y): the command is +-inf or NaN."""
+
+    def __init__(self, t: float, y: np.ndarray) -> None:
+        super().__init__(t)
+        self.t = t
+        self.y = y
+
+
+def _nonfinite_row(rhs: ClosedLoopRHS, y0: np.ndarray, e: _NonFinite, eps: float,
+                   landed0: bool) -> dict:
+    """What is known when the derivative became non-finite: the state there and the t = 0
+    band entries (solve_ivp cannot return a partial solution; see ``simulate_reference``)."""
+    s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
+    tf = np.where(np.abs(s0) <= eps, 0.0, np.nan)
+    nan3 = np.full(3, np.nan)
+    return {"landed": landed0, "landing_time": 0.0 if landed0 else np.nan,
+            "r_land": y0[:3] if landed0 else nan3, "v_land": y0[3:6] if landed0 else nan3,
+            "fuel": y0[6] - e.y[6],
+            "peak_thrust": np.zeros(3), "peak_thrust_unsat": np.zeros(3),
+            "time_saturated": 0.0, "min_altitude": float(min(y0[2], e.y[2])),
+            "ground_contact": bool(y0[2] < 0), "t_s1": tf[:3], "t_s2": tf[3:],
+            "t_s1_last_exit": nan3, "t_s2_last_exit": nan3, "nonfinite": True,
+            "t_end": float(e.t), "y_end": e.y, "sol": None}
+
+
 def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
          land_tol: tuple[float, float], stop: str, rtol: float, atol: float, max_step: float,
          method: str) -> dict:
     tr, tv = land_tol
+
+    def f(t, y):
+        dy = rhs(t, y)
+        if not np.all(np.isfinite(dy)):
+            # LSODA would retry the step forever at a non-finite derivative (measured: millions
+            # of evaluations at the same t); the batch flags the case, so does the reference.
+            raise _NonFinite(float(t), np.array(y, float))
+        return dy
 
     def landing(t, y):
         return max(np.linalg.norm(y[:3]) / tr, np.linalg.norm(y[3:6]) / tv) - 1.0
@@ -86,11 +120,14 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
         return e
 
     events = [landing] + [band(j, -1) for j in range(6)] + [band(j, 1) for j in range(6)]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        sol = solve_ivp(rhs, (0.0, t_max), y0, method=method, rtol=rtol, atol=atol,
-                        max_step=max_step, events=events, dense_output=True)
+    landed0 = bool(landing(0.0, y0) <= 0)
+    try:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sol = solve_ivp(f, (0.0, t_max), y0, method=method, rtol=rtol, atol=atol,
+                            max_step=max_step, events=events, dense_output=True)
+    except _NonFinite as e:
+        return _nonfinite_row(rhs, y0, e, eps, landed0)
     s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
-    landed0 = landing(0.0, y0) <= 0
     tl = 0.0 if landed0 else (sol.t_events[0][0] if len(sol.t_events[0]) else np.nan)
     tf = np.array([0.0 if abs(s0[j]) <= eps else
                    (sol.t_events[1 + j][0] if len(sol.t_events[1 + j]) else np.nan)
@@ -137,7 +174,14 @@ def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Ga
     another is still flying, the problem is stiff and explicit DOP853 crawls (minutes per case);
     LSODA switches to BDF there and agrees with Radau to 1e-8 s in landing time.
     ``dt`` is accepted for signature compatibility and ignored; record=True keeps each case's
-    OdeSolution in ``trajectory["sol"]``."""
+    OdeSolution in ``trajectory["sol"]`` (None for a non-finite case).
+
+    Non-finite derivative (the command is +-inf: s1 = 0 exactly with v != 0 and no thrust
+    limit): the case stops there, flagged ``nonfinite`` like in ``simulate_batch``, with
+    ``t_end``/``y_end`` the point of that evaluation; solve_ivp returns no partial solution, so
+    only the t = 0 band entries are kept.  In practice only an initial state reaches it (an
+    adaptive step landing on s1 = 0 exactly is a measure-zero event).  An axis exactly at
+    r = v = 0 is not singular: ``sim.laws.numpy_law`` evaluates the limit there."""
     del dt
     r0, v0, m0 = _check_states(r0, v0, m0)
     _, eps = check_options(law=law, disturbance=disturbance, thrust_limit=thrust_limit,

@@ -91,15 +91,38 @@ def test_printed_law_does_not_land_in_80s() -> None:
 
 
 def test_nonfinite_is_flagged_not_dropped() -> None:
-    """r_x = 0 exactly with v_x != 0: the corrected law commands -inf on x."""
+    """r_x = 0 exactly with v_x != 0: the corrected law commands -inf on x (batch and
+    reference alike)."""
     r0 = np.array([[0.0, 1000.0, 1500.0], list(R0)])
     v0 = np.array([[10.0, -15.0, -75.0], list(V0)])
-    b = simulate_batch(r0, v0, [M0, M0], G)
-    assert b.nonfinite[0] and not b.landed[0] and not b.nonfinite[1] and b.landed[1]
-    assert b.t_end[0] == 0.0
-    lim = simulate_batch(r0, v0, [M0, M0], G, thrust_limit=50e3)
-    assert not lim.nonfinite[0]  # saturated instead
-    assert lim.peak_thrust_unsat[0, 0] == np.inf and lim.peak_thrust[0, 0] == 50e3
+    for sim in (simulate_batch, simulate_reference):
+        b = simulate_batch(r0, v0, [M0, M0], G) if sim is simulate_batch else sim(
+            r0, v0, [M0, M0], G)
+        assert b.nonfinite[0] and not b.landed[0] and not b.nonfinite[1] and b.landed[1]
+        assert b.t_end[0] == 0.0
+        lim = sim(r0, v0, [M0, M0], G, thrust_limit=50e3)
+        assert not lim.nonfinite[0] and lim.landed[0]  # saturated instead
+        assert lim.peak_thrust_unsat[0, 0] == np.inf and lim.peak_thrust[0, 0] == 50e3
+
+
+@pytest.mark.parametrize("law", ["corrected", "super-twisting"])
+def test_axis_at_its_equilibrium_is_not_singular(law: str) -> None:
+    """r_x = v_x = 0 exactly (x already at the target): the singular term is 0 there (the
+    law's limit along the solution), x stays at 0 and the case flies, batch and reference."""
+    r0 = np.array([[0.0, 1000.0, 1500.0], [0.0, 0.0, 1500.0]])
+    v0 = np.array([[0.0, -15.0, -75.0], [0.0, 0.0, -75.0]])
+    kw = dict(law=law) if law == "corrected" else dict(law=law, t_max=5.0, stop="t_max")
+    b = simulate_batch(r0, v0, [M0, M0], G, **kw)
+    r = simulate_reference(r0, v0, [M0, M0], G, **kw)
+    for res in (b, r):
+        assert not res.nonfinite.any()
+        np.testing.assert_array_equal(res.y_end[:, [0, 3]], 0.0)
+    if law == "corrected":
+        assert b.landed.all()
+        _agree(b, r)
+    else:
+        np.testing.assert_allclose(b.y_end, r.y_end, rtol=1e-6, atol=1e-6)
+        np.testing.assert_array_equal(b.y_end[1, [0, 1, 3, 4]], 0.0)
 
 
 def test_chunking_and_threads_do_not_change_results() -> None:

@@ -76,12 +76,38 @@ def test_supertwisting_reading() -> None:
 
 
 def test_singular_point_is_not_smoothed() -> None:
-    """The corrected law's |s1|^(q1-1) v is infinite at s1 = 0, v != 0; NaN at (0, 0)."""
+    """The corrected law's |s1|^(q1-1) v is infinite at s1 = 0, v != 0 (numba and numpy)."""
     f = numba_law("corrected")
     P = get_law("corrected").param_values(default_gains())
     assert f(0.0, 2.0, -3.7, 0.0, 1900.0, P, 0) == -np.inf
     assert f(0.0, -2.0, -3.7, 0.0, 1900.0, P, 0) == np.inf
-    assert np.isnan(f(0.0, 0.0, -3.7, 0.0, 1900.0, P, 0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = numpy_law("corrected")(np.zeros(3), np.array([2.0, -2.0, 0.0]), np.zeros(3),
+                                   np.zeros(3), 1900.0, P)
+    assert a[0] == -np.inf and a[1] == np.inf and a[2] == 0.0
+
+
+@pytest.mark.parametrize("name", list(LAWS))
+def test_axis_at_equilibrium_gets_the_limit(name: str) -> None:
+    """At r = v = 0 exactly the singular term (|s1|^(q1-1) v, (46)'s |s|^(-1/2) s') is 0 along
+    the solution (the axis stays at its equilibrium), so the command is the law with v = 0:
+    -g - a_m for the sliding-mode laws, -g for (46); not 0 * inf = NaN."""
+    P = get_law(name).param_values(default_gains())
+    grav, am, m = -3.7114, 0.25, 1900.0
+    expect = -grav - (0.0 if name == "super-twisting" else am)
+    for v0 in (0.0, -0.0):
+        assert numba_law(name)(0.0, v0, grav, am, m, P, 2) == pytest.approx(expect, rel=1e-15)
+        with np.errstate(divide="ignore", invalid="ignore"):  # the 0 * inf it replaces
+            a = numpy_law(name)(np.zeros((2, 3)), np.full((2, 3), v0), np.full(3, grav),
+                                np.full((2, 3), am), np.full(2, m), P)
+        np.testing.assert_allclose(a, expect, rtol=1e-15)
+    # next to it the law is finite and continuous along the surface s2 = 0 (corrected law:
+    # -g - a_m + beta1^2 q1 sig(r, 2 q1 - 1) + ..., -> -g - a_m as r -> 0, slowly: r^0.2)
+    if name == "corrected":
+        g = default_gains()
+        r = 1e-30
+        v = -(g.beta1[2] * r**g.q1 + g.beta2[2] * r**g.q2)
+        assert abs(numba_law(name)(r, v, grav, am, m, P, 2) - expect) < 1e-5
 
 
 def test_unknown_law() -> None:
