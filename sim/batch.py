@@ -21,7 +21,16 @@ What is recorded per case (``BatchResult``):
     before landing: the paper's Fig. 8 "collision");
   nonfinite: the state became NaN/inf (the corrected law's |s1|^(q1-1) v is +-inf at s1 = 0
     with v != 0; with a thrust limit it saturates, without one the case is flagged and
-    stopped, never silently dropped).  ``t_end`` and ``y_end`` give where each case stopped.
+    stopped, never silently dropped).  ``t_end`` and ``y_end`` give where each case stopped;
+  fuel_exhausted: the mass reached the dry mass ``m_dry`` (default theory.parameters.M_DRY),
+    located inside the step by bisection on the cubic Hermite interpolant of m, like the
+    landing.  A case that runs dry before landing is not landed, and its fuel, peaks,
+    saturation time, min altitude and ground contact are taken up to that point.  With
+    stop="landing" (the mission) the case ends there (t_end, y_end at the crossing).  With
+    stop="t_max" (observing the closed loop to t_max, as the bound checks of tuning.verify do,
+    where the law divides the mass out) the integration goes on past m_dry as it goes on past
+    landing; the flags still say which came first, and a landed case that later runs dry
+    (hovering) is both landed and fuel_exhausted.
 
 Chattering: the laws are not Lipschitz at s = 0 (|s|^q with q < 1), so an explicit step
 leaves a residual oscillation of s whose size depends on dt.  ``eps`` must sit above it; the
@@ -53,15 +62,17 @@ from sim.parameters import (
 )
 from theory.errors import ParameterError
 from theory.gains import Gains
-from theory.parameters import AREA, G_MARS, ISP
+from theory.parameters import AREA, G_MARS, ISP, M_DRY
 
 DRAG_CODE = {"none": 0, "physical": 1, "printed": 2}
 LIMITS = ("axis", "norm")
 STOP_MODES = ("landing", "t_max")
 
+# Per-case result arrays; also the order of the kernel's output arguments.
 ARRAY_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thrust",
                 "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact", "t_s1",
-                "t_s2", "t_s1_last_exit", "t_s2_last_exit", "nonfinite", "t_end", "y_end")
+                "t_s2", "t_s1_last_exit", "t_s2_last_exit", "nonfinite", "fuel_exhausted",
+                "t_end", "y_end")
 
 
 @dataclass
@@ -83,6 +94,7 @@ class BatchResult:
     t_s1_last_exit: np.ndarray
     t_s2_last_exit: np.ndarray
     nonfinite: np.ndarray
+    fuel_exhausted: np.ndarray
     t_end: np.ndarray
     y_end: np.ndarray
     eps: float
@@ -213,9 +225,9 @@ def _compile(law: str, parallel: bool = True):
 
     @numba.njit(error_model="numpy", parallel=parallel)
     def kernel(r0, v0, m0, P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dcoef,
-               domega, dphase, dt, nsteps, eps, tol_r, tol_v, stop_landing, record,
+               domega, dphase, dt, nsteps, eps, tol_r, tol_v, stop_landing, record, m_dry,
                landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground,
-               ts1, ts2, ts1x, ts2x, nonfinite, t_end, y_end, rec_y, rec_F):
+               ts1, ts2, ts1x, ts2x, nonfinite, fexh, t_end, y_end, rec_y, rec_F):
         n = r0.shape[0]
         P_ = P
         SP_ = SP
@@ -260,6 +272,7 @@ def _compile(law: str, parallel: bool = True):
             gc = y[2] < 0.0
             has_landed = False
             bad = False
+            dry = False
             tl = np.nan
             rhs(0.0, y, k1, F, Fu, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc,
                 dw, dp, SP)
@@ -314,21 +327,39 @@ def _compile(law: str, parallel: bool = True):
                 # derivative and command at the new node (reused as the next step's k1)
                 rhs(t_new, yn, k1n, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim, dkind,
                     damp, dc, dw, dp, SP)
-                # sliding-variable bands, linear between nodes
+                # dry mass: first th with m(th) <= m_dry, bisection on the Hermite interpolant
+                ended = has_landed or dry  # the case's outcome was reached before this step
+                thd = 1.0
+                dry_now = False
+                if not dry and yn[6] <= m_dry:
+                    dry_now = True
+                    a = 0.0
+                    b = 1.0
+                    for _ in range(60):
+                        mid = 0.5 * (a + b)
+                        if _herm(y[6], k1[6], yn[6], k1n[6], h, mid) <= m_dry:
+                            b = mid
+                        else:
+                            a = mid
+                    thd = b
+                # with stop="landing" a case that runs dry ends at thd
+                bend = thd if stop_landing else 1.0
+                # sliding-variable bands, linear between nodes (up to the dry-mass stop)
                 for ax in range(3):
                     s_new[ax] = yn[ax]
                     s_new[3 + ax] = s2_fn(yn[ax], yn[3 + ax], SP[ax, 0], SP[ax, 1], SP[ax, 2],
                                           SP[ax, 3])
                 for j in range(6):
                     lo, hi = _band(s_old[j], s_new[j], eps)
-                    if lo <= hi:
+                    if lo <= hi and lo <= bend:
                         if math.isnan(tf[j]):
                             tf[j] = t + lo * h
-                        if hi < 1.0:
+                        if hi < bend:
                             tx[j] = t + hi * h
                     s_old[j] = s_new[j]
-                if not has_landed:
-                    # metrics until landing: command at the step's left node
+                if not ended:
+                    # metrics until the outcome (landing or dry mass): command at the step's
+                    # left node
                     sat = False
                     for ax in range(3):
                         pk[ax] = max(pk[ax], abs(F[ax]))
@@ -337,7 +368,7 @@ def _compile(law: str, parallel: bool = True):
                             sat = True
                     rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
                     vn = math.sqrt(yn[3] ** 2 + yn[4] ** 2 + yn[5] ** 2)
-                    frac = 1.0
+                    frac = thd
                     if rn <= tol_r and vn <= tol_v:
                         # bisection on L(th) = max(|r|/tol_r, |v|/tol_v) - 1, Hermite in th
                         a = 0.0
@@ -354,24 +385,37 @@ def _compile(law: str, parallel: bool = True):
                                 b = mid
                             else:
                                 a = mid
-                        frac = b
-                        has_landed = True
-                        tl = t + b * h
-                        for ax in range(3):
-                            r_land[i, ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, b)
-                            v_land[i, ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax],
-                                                  k1n[3 + ax], h, b)
-                        fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)
+                        if b <= thd:  # landed before (or as) the mass reached m_dry
+                            frac = b
+                            has_landed = True
+                            tl = t + b * h
+                            for ax in range(3):
+                                r_land[i, ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, b)
+                                v_land[i, ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax],
+                                                      k1n[3 + ax], h, b)
+                            fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)
+                            if stop_landing:
+                                dry_now = False  # the case ends at landing, above m_dry
+                    if dry_now and not has_landed:  # out of propellant before landing
+                        fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, thd)
                     if sat:
                         ts += frac * h
-                    if yn[2] < za:
-                        za = yn[2]
-                    if yn[2] < 0.0 and not has_landed:
+                    zn = yn[2] if not dry_now else _herm(y[2], k1[2], yn[2], k1n[2], h, thd)
+                    if zn < za:
+                        za = zn
+                    if zn < 0.0 and not has_landed:
                         gc = True
                     if has_landed:  # the command at the landing node counts too
                         for ax in range(3):
                             pk[ax] = max(pk[ax], abs(Fn[ax]))
                             pku[ax] = max(pku[ax], abs(Fun[ax]))
+                if dry_now:
+                    dry = True
+                    if stop_landing:  # out of propellant: the case ends at th = thd
+                        for j in range(7):
+                            y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, thd)
+                        t = t + thd * h
+                        break
                 for j in range(7):
                     y[j] = yn[j]
                     k1[j] = k1n[j]
@@ -386,9 +430,11 @@ def _compile(law: str, parallel: bool = True):
                     for ax in range(3):
                         rec_F[i, step, ax] = F[ax]
             landed[i] = has_landed
+            fexh[i] = dry
             t_land[i] = tl
             if not has_landed:
-                fuel[i] = m0[i] - y[6]
+                if not dry:
+                    fuel[i] = m0[i] - y[6]
                 for ax in range(3):
                     r_land[i, ax] = np.nan
                     v_land[i, ax] = np.nan
@@ -440,6 +486,20 @@ def _positive(name: str, x: float | None, unit: str, allow_none: bool = False) -
         raise ParameterError(name, x, f"must be a finite number > 0 ({unit})")
 
 
+def check_m_dry(m_dry: float, m0: np.ndarray) -> float:
+    """Validate the dry mass against the initial masses: finite, > 0 and < every m0."""
+    try:
+        m_dry = float(m_dry)
+    except (TypeError, ValueError):
+        raise ParameterError("m_dry", m_dry, "must be a number (kg)") from None
+    if not (np.isfinite(m_dry) and m_dry > 0):
+        raise ParameterError("m_dry", m_dry, "must be a finite number > 0 (kg)")
+    if np.any(m0 <= m_dry):
+        raise ParameterError("m_dry", m_dry, "must be < every initial mass m0 (smallest m0 = "
+                             f"{float(np.min(m0)):g} kg)")
+    return m_dry
+
+
 def check_options(*, law: str, disturbance: str, thrust_limit: float | None, limit: str,
                   dt: float | None, t_max: float, eps: float | None, drag: str,
                   guidance_drag: str | None, isp: float, land_tol: tuple[float, float],
@@ -482,7 +542,8 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
                    progress: bool = False, guidance_drag: str | None = None,
                    stop: str = "landing", case_offset: int = 0,
                    dist_spec: DisturbanceSpec | None = None,
-                   chunk: int = 4096, parallel: bool = True) -> BatchResult:
+                   chunk: int = 4096, parallel: bool = True,
+                   m_dry: float = M_DRY) -> BatchResult:
     """Fly N cases of seed 000's closed loop with fixed-step RK4 (see the module docstring).
 
     r0, v0 (N, 3) m and m/s in the landing-site frame, m0 (N,) kg (or one value for all).
@@ -500,8 +561,12 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
     record=True adds ``trajectory`` = {t (S,), r (N,S,3), v (N,S,3), m (N,S), F (N,S,3)}, NaN
     after a case stopped.  progress=True shows a rich progress bar over chunks of ``chunk``.
     parallel=False runs the cases on one thread (numba prange otherwise).
+    m_dry: dry mass (kg, default theory.parameters.M_DRY = 1505), > 0 and < every m0; a case
+      whose mass reaches it is ``fuel_exhausted`` (not landed if before landing) and, with
+      stop="landing", ends there (see the module docstring for stop="t_max").
     """
     r0, v0, m0 = _check_states(r0, v0, m0)
+    m_dry = check_m_dry(m_dry, m0)
     dt, eps = check_options(law=law, disturbance=disturbance, thrust_limit=thrust_limit,
                             limit=limit, dt=dt, t_max=t_max, eps=eps, drag=drag,
                             guidance_drag=guidance_drag, isp=isp, land_tol=land_tol, stop=stop)
@@ -527,7 +592,8 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
                                          "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit")}
     out.update({k: np.empty(n) for k in ("landing_time", "fuel", "time_saturated",
                                          "min_altitude", "t_end")})
-    out.update({k: np.zeros(n, bool) for k in ("landed", "ground_contact", "nonfinite")})
+    out.update({k: np.zeros(n, bool) for k in ("landed", "ground_contact", "nonfinite",
+                                               "fuel_exhausted")})
     out["y_end"] = np.empty((n, 7))
     shape_rec = (n, nsteps + 1) if record else (1, 1)
     rec_y = np.full(shape_rec + (7,), np.nan)
@@ -539,12 +605,8 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
                gkind, c, fmax, lim, KIND_CODE[disturbance], ds.amplitude,
                np.ascontiguousarray(ds.coef), np.ascontiguousarray(ds.omega),
                np.ascontiguousarray(ds.phase), dt, nsteps, eps, float(land_tol[0]),
-               float(land_tol[1]), stop == "landing", record,
-               *(out[k][sl] for k in ("landed", "landing_time", "r_land", "v_land", "fuel",
-                                      "peak_thrust", "peak_thrust_unsat", "time_saturated",
-                                      "min_altitude", "ground_contact", "t_s1", "t_s2",
-                                      "t_s1_last_exit", "t_s2_last_exit", "nonfinite",
-                                      "t_end", "y_end")),
+               float(land_tol[1]), stop == "landing", record, m_dry,
+               *(out[k][sl] for k in ARRAY_FIELDS),
                rec_y[sl] if record else rec_y, rec_F[sl] if record else rec_F)
 
     chunks = [slice(a, min(a + chunk, n)) for a in range(0, n, chunk)]
@@ -569,6 +631,7 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
             "thrust_limit": thrust_limit, "limit": limit if thrust_limit is not None else None,
             "drag": drag, "guidance_drag": guidance_drag or drag, "isp": isp,
             "land_tol": list(land_tol), "t_max": t_max, "seed": seed, "stop": stop,
+            "m_dry": m_dry,
             "integrator": f"RK4 fixed step dt={dt} s (numba)", "boundary_layer": None}
     return BatchResult(eps=eps, dt=dt, r0=r0, v0=v0, m0=m0, trajectory=traj, info=info, **out)
 

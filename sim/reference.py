@@ -12,14 +12,14 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from sim.batch import BatchResult, _check_states, check_options
+from sim.batch import BatchResult, _check_states, check_m_dry, check_options
 from sim.disturbances import DisturbanceSpec, make_disturbance
 from sim.laws import get_law, numpy_law
 from sim.mars import drag_accel, plant_rhs, saturate
 from theory.errors import ParameterError
 from theory.gains import Gains
 from theory.mars_mss import surfaces_numeric
-from theory.parameters import G_MARS, ISP
+from theory.parameters import G_MARS, ISP, M_DRY
 
 REF_RTOL = 1e-10
 REF_ATOL = 1e-10
@@ -86,7 +86,7 @@ def _nonfinite_row(rhs: ClosedLoopRHS, y0: np.ndarray, e: _NonFinite, eps: float
     nan3 = np.full(3, np.nan)
     return {"landed": landed0, "landing_time": 0.0 if landed0 else np.nan,
             "r_land": y0[:3] if landed0 else nan3, "v_land": y0[3:6] if landed0 else nan3,
-            "fuel": y0[6] - e.y[6],
+            "fuel": y0[6] - e.y[6], "fuel_exhausted": False,
             "peak_thrust": np.zeros(3), "peak_thrust_unsat": np.zeros(3),
             "time_saturated": 0.0, "min_altitude": float(min(y0[2], e.y[2])),
             "ground_contact": bool(y0[2] < 0), "t_s1": tf[:3], "t_s2": tf[3:],
@@ -96,7 +96,7 @@ def _nonfinite_row(rhs: ClosedLoopRHS, y0: np.ndarray, e: _NonFinite, eps: float
 
 def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
          land_tol: tuple[float, float], stop: str, rtol: float, atol: float, max_step: float,
-         method: str) -> dict:
+         method: str, m_dry: float) -> dict:
     tr, tv = land_tol
 
     def f(t, y):
@@ -119,7 +119,13 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
         e.direction = direction
         return e
 
-    events = [landing] + [band(j, -1) for j in range(6)] + [band(j, 1) for j in range(6)]
+    def dry(t, y):
+        return y[6] - m_dry
+    dry.terminal = stop == "landing"  # as in simulate_batch: "t_max" integrates past it
+    dry.direction = -1
+
+    events = ([landing] + [band(j, -1) for j in range(6)] + [band(j, 1) for j in range(6)]
+              + [dry])
     landed0 = bool(landing(0.0, y0) <= 0)
     try:
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -128,15 +134,19 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
     except _NonFinite as e:
         return _nonfinite_row(rhs, y0, e, eps, landed0)
     s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
+    t_dry = sol.t_events[13][0] if len(sol.t_events[13]) else np.inf
     tl = 0.0 if landed0 else (sol.t_events[0][0] if len(sol.t_events[0]) else np.nan)
+    if not tl <= t_dry:  # ran dry first: not landed
+        tl = np.nan
     tf = np.array([0.0 if abs(s0[j]) <= eps else
                    (sol.t_events[1 + j][0] if len(sol.t_events[1 + j]) else np.nan)
                    for j in range(6)])
     tx = np.array([sol.t_events[7 + j][-1] if len(sol.t_events[7 + j]) else np.nan
                    for j in range(6)])
+    exhausted = bool(np.isfinite(t_dry))
     nonfinite = not np.all(np.isfinite(sol.y)) or sol.status == -1
     t_end = float(sol.t[-1])
-    t_metric = t_end if np.isnan(tl) else tl
+    t_metric = min(t_end, t_dry) if np.isnan(tl) else tl
     grid = np.union1d(np.arange(0.0, t_metric, METRIC_GRID), sol.t[sol.t <= t_metric])
     ys = sol.sol(grid)
     f_sat, f_uns = rhs.force(ys.T)  # (K, 3) each
@@ -147,7 +157,9 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
     ground = bool(np.any(ys[2] < 0))
     return {"landed": bool(np.isfinite(tl)), "landing_time": tl, "r_land": y_land[:3],
             "v_land": y_land[3:6],
-            "fuel": y0[6] - (y_land[6] if np.isfinite(tl) else y_end[6]),
+            "fuel": y0[6] - (y_land[6] if np.isfinite(tl) else
+                             sol.sol(t_dry)[6] if exhausted else y_end[6]),
+            "fuel_exhausted": exhausted,
             "peak_thrust": np.max(np.abs(f_sat), axis=0),
             "peak_thrust_unsat": np.max(np.abs(f_uns), axis=0),
             "time_saturated": float(np.sum(dts[sat])), "min_altitude": float(ys[2].min()),
@@ -167,7 +179,8 @@ def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Ga
                        guidance_drag: str | None = None, stop: str = "landing",
                        case_offset: int = 0, dist_spec: DisturbanceSpec | None = None,
                        rtol: float = REF_RTOL, atol: float = REF_ATOL,
-                       max_step: float = REF_MAX_STEP, method: str = "LSODA") -> BatchResult:
+                       max_step: float = REF_MAX_STEP, method: str = "LSODA",
+                       m_dry: float = M_DRY) -> BatchResult:
     """Per-case solve_ivp (LSODA, rtol = atol = 1e-10, max_step 0.1 s by default) with the
     options of ``sim.batch.simulate_batch``.  LSODA because the corrected law's damping term
     beta1 q1 |s1|^(q1-1) v grows without bound as s1 -> 0: once an axis sits at s1 ~ 0 while
@@ -181,9 +194,12 @@ def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Ga
     ``t_end``/``y_end`` the point of that evaluation; solve_ivp returns no partial solution, so
     only the t = 0 band entries are kept.  In practice only an initial state reaches it (an
     adaptive step landing on s1 = 0 exactly is a measure-zero event).  An axis exactly at
-    r = v = 0 is not singular: ``sim.laws.numpy_law`` evaluates the limit there."""
+    r = v = 0 is not singular: ``sim.laws.numpy_law`` evaluates the limit there.
+    Dry mass ``m_dry``: an event, terminal with stop="landing", as in ``simulate_batch``
+    (``fuel_exhausted``; a case that runs dry first is not landed)."""
     del dt
     r0, v0, m0 = _check_states(r0, v0, m0)
+    m_dry = check_m_dry(m_dry, m0)
     _, eps = check_options(law=law, disturbance=disturbance, thrust_limit=thrust_limit,
                            limit=limit, dt=None, t_max=t_max, eps=eps, drag=drag,
                            guidance_drag=guidance_drag, isp=isp, land_tol=land_tol, stop=stop)
@@ -208,11 +224,12 @@ def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Ga
                             limit=limit, drag=drag, guidance_drag=guidance_drag, isp=isp)
         y0 = np.concatenate([r0[i], v0[i], [m0[i]]])
         rows.append(_one(rhs, y0, t_max=t_max, eps=eps, land_tol=land_tol, stop=stop,
-                         rtol=rtol, atol=atol, max_step=max_step, method=method))
+                         rtol=rtol, atol=atol, max_step=max_step, method=method,
+                         m_dry=m_dry))
     keys = [k for k in rows[0] if k != "sol"]
     out = {k: np.array([row[k] for row in rows]) for k in keys}
     info = {"law": law, "disturbance": disturbance, "thrust_limit": thrust_limit,
-            "limit": limit if thrust_limit is not None else None, "drag": drag,
+            "limit": limit if thrust_limit is not None else None, "drag": drag, "m_dry": m_dry,
             "integrator": f"solve_ivp {method} rtol={rtol} atol={atol} max_step={max_step}",
             "boundary_layer": None}
     traj = {"sol": [row["sol"] for row in rows]} if record else None

@@ -13,7 +13,7 @@ from sim.mars import exhaust_velocity
 from sim.reference import simulate_reference
 from theory.errors import ParameterError
 from theory.gains import default_gains
-from theory.parameters import M0, R0, V0
+from theory.parameters import M0, M_DRY, R0, V0
 
 G = default_gains()
 # Tolerances of the fast integrator (dt = 0.05 s) against the reference (LSODA 1e-10):
@@ -125,6 +125,47 @@ def test_axis_at_its_equilibrium_is_not_singular(law: str) -> None:
         np.testing.assert_array_equal(b.y_end[1, [0, 1, 3, 4]], 0.0)
 
 
+def test_dry_mass_stops_the_case() -> None:
+    """m reaching m_dry stops the case (located inside the step), flagged fuel_exhausted and
+    not landed; batch and reference agree."""
+    b = simulate_batch(R0[None], V0[None], [M0], G)
+    assert b.landed[0] and not b.fuel_exhausted[0] and b.info["m_dry"] == M_DRY
+    # a 5 kg budget on Table I: dry after ~0.28 s
+    kw = dict(m_dry=M0 - 5.0)
+    b = simulate_batch(R0[None], V0[None], [M0], G, **kw)
+    r = simulate_reference(R0[None], V0[None], [M0], G, **kw)
+    for res in (b, r):
+        assert res.fuel_exhausted[0] and not res.landed[0] and not res.nonfinite[0]
+        assert np.isnan(res.landing_time[0]) and np.all(np.isnan(res.r_land[0]))
+        assert res.fuel[0] == pytest.approx(5.0, abs=1e-9)
+        assert res.y_end[0, 6] == pytest.approx(M0 - 5.0, abs=1e-9)
+    assert b.t_end[0] == pytest.approx(r.t_end[0], abs=1e-6) and 0 < b.t_end[0] < b.dt * 10
+    np.testing.assert_allclose(b.y_end, r.y_end, atol=1e-5)
+    # running dry 0.05 s before touchdown (231.44 kg at landing): not landed, stops there
+    kw = dict(m_dry=M0 - 231.3)
+    b = simulate_batch(R0[None], V0[None], [M0], G, **kw)
+    r = simulate_reference(R0[None], V0[None], [M0], G, **kw)
+    for res in (b, r):
+        assert res.fuel_exhausted[0] and not res.landed[0]
+        assert res.fuel[0] == pytest.approx(231.3, abs=1e-9)
+    assert b.t_end[0] == pytest.approx(r.t_end[0], abs=1e-5)
+    assert b.t_end[0] < 27.39 and not b.t_end[0] % b.dt == 0.0  # inside a step
+    # stop="t_max" observes the closed loop past m_dry (as past landing); the flags still say
+    # which came first: dry at 0.28 s, so not landed although the state reaches the target
+    kw = dict(m_dry=M0 - 5.0, stop="t_max", t_max=40.0)
+    b = simulate_batch(R0[None], V0[None], [M0], G, **kw)
+    r = simulate_reference(R0[None], V0[None], [M0], G, **kw)
+    for res in (b, r):
+        assert res.fuel_exhausted[0] and not res.landed[0] and res.t_end[0] == 40.0
+        assert res.fuel[0] == pytest.approx(5.0, abs=1e-9)
+        assert np.linalg.norm(res.y_end[0, :3]) < 0.1 and res.y_end[0, 6] < M0 - 200
+        assert res.min_altitude[0] > 1400  # metrics up to the dry point
+    # hovering after landing runs dry at ~90 s: landed and exhausted
+    b = simulate_batch(R0[None], V0[None], [M0], G, stop="t_max", t_max=100.0)
+    assert b.landed[0] and b.fuel_exhausted[0] and b.y_end[0, 6] < M_DRY
+    assert b.fuel[0] == pytest.approx(231.4, abs=0.1)  # fuel at landing, as before
+
+
 def test_chunking_and_threads_do_not_change_results() -> None:
     r0, v0, m0 = table2_states(7, seed=3)
     kw = dict(disturbance="random", seed=9)
@@ -177,6 +218,8 @@ def test_worst_case_disturbance_neighborhood_is_invariant() -> None:
     (dict(limit="box"), "limit"), (dict(eps=0.0), "eps"), (dict(drag="x"), "drag"),
     (dict(isp=0.0), "isp"), (dict(land_tol=(0.1, -1)), "land_tol"), (dict(t_max=0.0), "t_max"),
     (dict(dist_amplitude=-1.0, disturbance="sin"), "dist_amplitude"),
+    (dict(m_dry=0.0), "m_dry"), (dict(m_dry=-5.0), "m_dry"), (dict(m_dry=float("nan")), "m_dry"),
+    (dict(m_dry=M0), "m_dry"), (dict(m_dry=M0 + 1.0), "m_dry"), (dict(m_dry="x"), "m_dry"),
 ])
 def test_bad_options_raise_parameter_error(kw, name) -> None:
     with pytest.raises(ParameterError) as e:
