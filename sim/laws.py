@@ -74,7 +74,7 @@ def register_law(spec: LawSpec) -> None:
     """Add (or replace) a law in the registry; see the module docstring."""
     LAWS[spec.name] = spec
     # defined below; not yet at import
-    for fn in ("python_law", "python_law_origin", "numba_law", "numpy_law"):
+    for fn in ("python_law", "_generated", "numba_law", "numba_law_s2", "numpy_law"):
         if fn in globals():
             globals()[fn].cache_clear()
 
@@ -129,6 +129,52 @@ def explog(expr: sp.Expr) -> sp.Expr:
         lambda e: _ex(e.exp * _ln(e.base)))
 
 
+def share_powers(expr: sp.Expr) -> tuple[sp.Expr, list[sp.Expr]]:
+    """Rewrite exp((q + k) ln|x|) -> exp(q ln|x|) |x|^k when exp(q ln|x|) also occurs (k a
+    small nonzero integer): one exp per family instead of one per power (the corrected law's
+    |s1|^(q1-1), |s1|^(q2-1) next to |s1|^q1, |s1|^q2: 6 -> 4 exp per axis).
+
+    Exact for x != 0 (up to rounding: one division or multiplication instead of an exp); at
+    x = 0 it gives 0 * inf = NaN where the original gives +-inf or 0, and |x|^-1 overflows for
+    |x| < 1/DBL_MAX, so ``numba_law`` calls the unshared expression when |x| <= TINY.
+    Returns the rewritten expression and the x of each rewritten family.
+    """
+    exps = [e for e in expr.atoms(_ex)
+            if isinstance(e.args[0], sp.Mul) and any(isinstance(f, _ln) for f in e.args[0].args)]
+    by_log: dict = {}
+    for e in exps:
+        lns = [f for f in e.args[0].args if isinstance(f, _ln)]
+        if len(lns) != 1:
+            continue
+        by_log.setdefault(lns[0], []).append((sp.expand(e.args[0] / lns[0]), e))
+    subs = {}
+    for ln_, fam in by_log.items():
+        def above(q, fam=fam):  # a power of the family q + k, k in {1, 2} (the kept one)
+            for q0, e0 in fam:
+                k = sp.simplify(q - q0)
+                if k.is_Integer and int(k) in (-1, -2):
+                    return e0, int(k)
+            return None
+        for q, e in sorted(fam, key=lambda qe: sp.default_sort_key(qe[0])):
+            hit = above(q)
+            while hit is not None and above(_exponent(hit[0], ln_)) is not None:
+                up = above(_exponent(hit[0], ln_))  # chain q -> q+1 -> q+2: use the top
+                hit = (up[0], hit[1] + up[1])
+            if hit is not None:
+                subs[e] = hit[0] * ln_.args[0] ** hit[1]
+    bases = sorted({ln_.args[0] for ln_, fam in by_log.items()
+                    if any(e in subs for _, e in fam)}, key=sp.default_sort_key)
+    return expr.xreplace(subs), bases
+
+
+def _exponent(e: sp.Expr, ln_: sp.Expr) -> sp.Expr:
+    return sp.expand(e.args[0] / ln_)
+
+
+# Below this |x| the shared powers are not used (|x|^-1 overflows; 0 * inf at x = 0).
+TINY = 1e-300
+
+
 # LLVM fast-math flags that keep NaN/inf semantics (no "nnan"/"ninf": the simulator must see the
 # singular values): contraction to fma, reassociation, reciprocal, approximate libm calls.
 FASTMATH = {"contract", "reassoc", "arcp", "nsz", "afn"}
@@ -160,11 +206,63 @@ def origin_expr(spec: LawSpec) -> sp.Expr:
     return spec.expr().subs(mss.v, 0)
 
 
+# The symbols of s2 (21) in the column order of ``surface_params``.
+SURFACE_SYMBOLS = (mss.beta1, mss.beta2, mss.q1, mss.q2)
+
+
 @cache
+def _generated(name: str, with_s2: bool) -> dict:
+    """The generated scalar code behind ``numba_law`` / ``numba_law_s2``: the exact form
+    (``explog``), the form at r = v = 0 (``origin_expr``), the ``share_powers`` form and its
+    guard, each returning a, or (a, s2) with s2 of (21) computed in the same code (common
+    subexpressions shared with the law) when with_s2.  Arguments: law_args, then the surface
+    symbols the law does not have (``extra``, taken from surface_params)."""
+    spec = get_law(name)
+    exprs = [spec.expr()] + ([mss.surface2()] if with_s2 else [])
+    extra = tuple(x for x in SURFACE_SYMBOLS if x not in spec.params) if with_s2 else ()
+    args = law_args(spec) + extra
+
+    def lam(es: list[sp.Expr]) -> Callable:
+        return sp.lambdify(args, es[0] if len(es) == 1 else tuple(es), modules=_NB_MODULES,
+                           cse=True)
+
+    exact = [explog(e) for e in exprs]
+    out = {"extra": extra, "exact": lam(exact),
+           "origin": lam([explog(e.subs(mss.v, 0)) for e in exprs]), "shared": None}
+    shared, bases = share_powers(sp.Tuple(*exact))
+    if bases:
+        guard = bases[0] if len(bases) == 1 else sp.Min(*bases)
+        out["shared"] = lam(list(shared.args))
+        out["guard"] = sp.lambdify(args, guard, modules=_NB_MODULES)
+    return out
+
+
 def python_law_origin(name: str) -> Callable[..., float]:
     """``python_law`` of ``origin_expr``: the law at r = v = 0, same arguments."""
+    return _generated(name, False)["origin"]
+
+
+def _numba_axis_fn(name: str, with_s2: bool) -> Callable:
     spec = get_law(name)
-    return sp.lambdify(law_args(spec), explog(origin_expr(spec)), modules=_NB_MODULES, cse=True)
+    gen = _generated(name, with_s2)
+    pars = ", ".join([f"P[i, {j}]" for j in range(len(spec.params))]
+                     + [f"SP[i, {SURFACE_SYMBOLS.index(x)}]" for x in gen["extra"]])
+    call = f"(r, v, grav, a_m, m, {pars})"
+    ns: dict = {"TINY": TINY}
+    for key in ("exact", "origin", "shared"):
+        if gen[key] is not None:
+            ns[key] = numba.njit(gen[key], error_model="numpy", fastmath=FASTMATH)
+    fast = ""
+    if gen["shared"] is not None:
+        ns["guard"] = numba.njit(gen["guard"], error_model="numpy")
+        fast = f"    if abs(guard{call}) > TINY:\n        return shared{call}\n"
+    src = (f"def law_p(r, v, grav, a_m, m, P, {'SP, ' if with_s2 else ''}i):\n"
+           f"{fast}"
+           f"    if r == 0.0 and v == 0.0:\n"
+           f"        return origin{call}\n"
+           f"    return exact{call}\n")
+    exec(src, ns)  # noqa: S102  (source generated above from the registry, no user text)
+    return numba.njit(ns["law_p"], error_model="numpy", inline="always")
 
 
 @cache
@@ -178,19 +276,19 @@ def numba_law(name: str) -> Callable[..., float]:
     law at s1 = 0, v != 0 returns +-inf; the simulator saturates it (limits on) or flags the case.
     At r = v = 0 exactly (an axis at its equilibrium) the law is evaluated with v = 0 substituted
     symbolically (``origin_expr``): the limit along the solution, finite, instead of 0 * inf.
+    Elsewhere the ``share_powers`` form is used where it is exact (|x| > TINY for each shared
+    family), ``python_law`` otherwise.
     """
-    spec = get_law(name)
-    core = numba.njit(python_law(name), error_model="numpy", fastmath=FASTMATH)
-    core0 = numba.njit(python_law_origin(name), error_model="numpy", fastmath=FASTMATH)
-    k = len(spec.params)
-    pars = ", ".join(f"P[i, {j}]" for j in range(k))
-    src = (f"def law_p(r, v, grav, a_m, m, P, i):\n"
-           f"    if r == 0.0 and v == 0.0:\n"
-           f"        return core0(r, v, grav, a_m, m, {pars})\n"
-           f"    return core(r, v, grav, a_m, m, {pars})\n")
-    ns: dict = {"core": core, "core0": core0}
-    exec(src, ns)  # noqa: S102  (source generated above from the registry, no user text)
-    return numba.njit(ns["law_p"], error_model="numpy")
+    return _numba_axis_fn(name, False)
+
+
+@cache
+def numba_law_s2(name: str) -> Callable[..., tuple[float, float]]:
+    """The law and s2 (21) in one compiled function: f(r, v, grav, a_m, m, P, SP, i) -> (a, s2),
+    SP = ``surface_params`` (used for the s2 symbols the law does not have).  The simulator
+    needs s2 at every node; computing it with the law shares |r|^q1, |r|^q2 (and saves one
+    ln and two exp per axis and node for the sliding-mode laws).  Same branches as numba_law."""
+    return _numba_axis_fn(name, True)
 
 
 @cache

@@ -6,7 +6,17 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from sim.laws import LAWS, get_law, law_args, numba_law, numpy_law, python_law
+from sim.laws import (
+    LAWS,
+    get_law,
+    law_args,
+    numba_law,
+    numba_law_s2,
+    numpy_law,
+    python_law,
+    surface_params,
+)
+from theory import mars_mss as mss
 from theory.errors import ParameterError
 from theory.gains import default_gains, gains_from_dict
 from theory.mars_supertwisting import law_supertwisting
@@ -40,9 +50,12 @@ def test_generated_law_matches_symbolic(name: str) -> None:
     expr = spec.expr()
     args = law_args(spec)
     nb = numba_law(name)
+    nb2 = numba_law_s2(name)
     npf = numpy_law(name)
+    s2_expr = mss.surface2()
     for g in _gain_sets():
         P = spec.param_values(g)
+        SP = surface_params(g)
         for pt in _points(15):
             ax = int(RNG.integers(3))
             vals = [*pt, *P[ax]]
@@ -62,6 +75,30 @@ def test_generated_law_matches_symbolic(name: str) -> None:
             assert abs(got_nb - exact) <= tol, (name, vals, got_nb, exact)
             assert abs(got_py - exact) <= tol
             assert abs(got_np - exact) <= tol
+            # the law with s2 (21) from the same generated code, as the simulator calls it
+            a2, s2 = nb2(*pt, P, SP, ax)
+            assert abs(a2 - exact) <= tol
+            sym = (mss.r, mss.v, mss.beta1, mss.beta2, mss.q1, mss.q2)
+            num = (pt[0], pt[1], *SP[ax])
+            s2_exact = float(sp.N(s2_expr.subs({s: sp.Float(repr(float(x)), 40)
+                                                for s, x in zip(sym, num, strict=True)}), 30))
+            assert abs(s2 - s2_exact) <= 1e-10 * max(1.0, abs(s2_exact))
+
+
+@pytest.mark.parametrize("name", list(LAWS))
+def test_tiny_positions_use_the_exact_form(name: str) -> None:
+    """Below sim.laws.TINY the shared-power form (|r|^(q-1) = |r|^q / |r|) would overflow;
+    the compiled law switches to the exact form there and stays accurate."""
+    spec = get_law(name)
+    P = spec.param_values(default_gains())
+    args = law_args(spec)
+    for r in (3e-310, -3e-310, 1e-299, -2e-290):
+        vals = [r, -1e-3, -3.7114, 0.01, 1900.0, *P[2]]
+        exact = spec.expr().subs({s: sp.Float(repr(float(x)), 40) for s, x in zip(args, vals,
+                                                                                   strict=True)})
+        exact = float(sp.N(exact, 30))
+        got = numba_law(name)(*vals[:5], P, 2)
+        assert np.isfinite(got) and abs(got - exact) <= 1e-10 * max(1.0, abs(exact)), (r, got)
 
 
 def test_supertwisting_reading() -> None:
