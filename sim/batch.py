@@ -49,7 +49,7 @@ import numba
 import numpy as np
 
 from sim.disturbances import KIND_CODE, DisturbanceSpec, make_disturbance
-from sim.laws import get_law, numba_law, numba_s2, surface_params
+from sim.laws import get_law, numba_law_s2, surface_params
 from sim.mars import check_drag, exhaust_velocity
 from sim.parameters import (
     CD_LANDER,
@@ -167,23 +167,22 @@ def _band(sa: float, sb: float, eps: float) -> tuple[float, float]:
 
 
 @cache
-def _compile(law: str, parallel: bool = True):
-    """Build the RK4 kernel for one law (numba compiles it on first call, ~10 s).
+def _case_fn(law: str):
+    """The RK4 integration of one case for one law (shared by the parallel and serial kernels)."""
+    law_fn = numba_law_s2(law)
 
-    parallel=False gives the same loop without threads, for executors (dask) that parallelise
-    over chunks themselves."""
-    law_fn = numba_law(law)
-    s2_fn = numba_s2()
-
-    @numba.njit(error_model="numpy")
-    def rhs(t, y, dy, F, Fu, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc, dw,
-            dp, SP):
+    @numba.njit(error_model="numpy", inline="always")
+    def rhs(t, y, dy, F, Fu, S2, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc,
+            dw, dp, SP):
+        """y' at (t, y) into dy; the command after / before the limit into F / Fu and s2 (21)
+        per axis into S2 (computed with the law)."""
         m = y[6]
         fac_g = _drag_fac(gkind, y[2])
         fac_p = fac_g if pkind == gkind else _drag_fac(pkind, y[2])
         for ax in range(3):
             am = _drag(gkind, fac_g, y[3 + ax], area[ax], m)
-            Fu[ax] = m * law_fn(y[ax], y[3 + ax], grav[ax], am, m, P, ax)
+            a, S2[ax] = law_fn(y[ax], y[3 + ax], grav[ax], am, m, P, SP, ax)
+            Fu[ax] = m * a
         if lim == 1:
             for ax in range(3):
                 f = Fu[ax]
@@ -208,14 +207,14 @@ def _compile(law: str, parallel: bool = True):
                 F[ax] = Fu[ax]
         fn = math.sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2])
         for ax in range(3):
-            if dkind == 1:
-                ap = damp[ax] * math.sin(t)
-            elif dkind == 2:
+            # "sin" arrives here as kind 2 with one unit-frequency term (simulate_batch): a
+            # separate one-call branch was executed speculatively by LLVM at every RHS
+            if dkind == 2:
                 ap = 0.0
                 for k in range(dc.shape[1]):
                     ap += dc[ax, k] * math.sin(dw[ax, k] * t + dp[ax, k])
             elif dkind == 3:
-                s2 = s2_fn(y[ax], y[3 + ax], SP[ax, 0], SP[ax, 1], SP[ax, 2], SP[ax, 3])
+                s2 = S2[ax]
                 ap = -damp[ax] * (1.0 if s2 > 0 else (-1.0 if s2 < 0 else 0.0))
             else:
                 ap = 0.0
@@ -223,235 +222,263 @@ def _compile(law: str, parallel: bool = True):
             dy[3 + ax] = F[ax] / m + grav[ax] + _drag(pkind, fac_p, y[3 + ax], area[ax], m) + ap
         dy[6] = -fn / c
 
+    @numba.njit(error_model="numpy")
+    def case(i, r0, v0, m0, P_, SP_, grav_, area_, pkind, gkind, c, fmax, lim, dkind, damp_, dcoef,
+             domega, dphase, dt, nsteps, eps, tol_r, tol_v, stop_landing, record, m_dry,
+             landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground,
+             ts1, ts2, ts1x, ts2x, nonfinite, fexh, t_end, y_end, rec_y, rec_F):
+        """Case i from start to its end (rhs is inlined here, in a serial function: inlined
+        into the prange loop itself, the parallel compile took minutes)."""
+        # Thread-local copies: passing the shared arrays to rhs() reference-counts them
+        # atomically from both threads at every call, which doubled the cost per step.
+        P = P_.copy()
+        SP = SP_.copy()
+        grav = grav_.copy()
+        area = area_.copy()
+        damp = damp_.copy()
+        y = np.empty(7)
+        yn = np.empty(7)
+        yt = np.empty(7)
+        k1 = np.empty(7)
+        k1n = np.empty(7)
+        k2 = np.empty(7)
+        k3 = np.empty(7)
+        k4 = np.empty(7)
+        F = np.empty(3)
+        Fu = np.empty(3)
+        Fn = np.empty(3)
+        Fun = np.empty(3)
+        s_old = np.empty(6)
+        s_new = np.empty(6)
+        tf = np.full(6, np.nan)  # first entry, s1 x/y/z then s2 x/y/z
+        tx = np.full(6, np.nan)  # last exit
+        dc = dcoef[i].copy()
+        dw = domega[i].copy()
+        dp = dphase[i].copy()
+        for ax in range(3):
+            y[ax] = r0[i, ax]
+            y[3 + ax] = v0[i, ax]
+        y[6] = m0[i]
+        pk = np.zeros(3)
+        pku = np.zeros(3)
+        ts = 0.0
+        za = y[2]
+        gc = y[2] < 0.0
+        has_landed = False
+        bad = False
+        dry = False
+        tl = np.nan
+        S2 = np.empty(3)
+        rhs(0.0, y, k1, F, Fu, S2, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc,
+            dw, dp, SP)
+        for ax in range(3):
+            s_old[ax] = y[ax]
+            s_old[3 + ax] = S2[ax]
+        for j in range(6):
+            if abs(s_old[j]) <= eps:
+                tf[j] = 0.0
+        if (math.sqrt(y[0] ** 2 + y[1] ** 2 + y[2] ** 2) <= tol_r
+                and math.sqrt(y[3] ** 2 + y[4] ** 2 + y[5] ** 2) <= tol_v):
+            has_landed = True
+            tl = 0.0
+            for ax in range(3):
+                r_land[i, ax] = y[ax]
+                v_land[i, ax] = y[3 + ax]
+            fuel[i] = 0.0
+        if record:
+            for j in range(7):
+                rec_y[i, 0, j] = y[j]
+            for ax in range(3):
+                rec_F[i, 0, ax] = F[ax]
+        t = 0.0
+        step = 0
+        while step < nsteps:
+            if has_landed and stop_landing:
+                break
+            h = dt
+            # classical RK4.  The three stages and the new node (whose derivative is the next
+            # step's k1) share one rhs() call site: rhs is inlined, and four copies of it made
+            # the compile several times slower
+            t_new = (step + 1) * dt
+            finite = True
+            for stage in range(4):
+                yin = yt
+                kout = k2
+                tst = t + 0.5 * h
+                if stage == 0:
+                    for j in range(7):
+                        yt[j] = y[j] + 0.5 * h * k1[j]
+                elif stage == 1:
+                    for j in range(7):
+                        yt[j] = y[j] + 0.5 * h * k2[j]
+                    kout = k3
+                elif stage == 2:
+                    for j in range(7):
+                        yt[j] = y[j] + h * k3[j]
+                    kout = k4
+                    tst = t + h
+                else:
+                    for j in range(7):
+                        yn[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+                        if not math.isfinite(yn[j]):
+                            finite = False
+                    if not finite:
+                        break
+                    # derivative and command at the new node (reused as the next step's k1)
+                    yin = yn
+                    kout = k1n
+                    tst = t_new
+                rhs(tst, yin, kout, Fn, Fun, S2, P, grav, area, pkind, gkind, c, fmax, lim, dkind,
+                    damp, dc, dw, dp, SP)
+            if not finite:
+                bad = True
+                break
+            # dry mass: first th with m(th) <= m_dry, bisection on the Hermite interpolant
+            ended = has_landed or dry  # the case's outcome was reached before this step
+            thd = 1.0
+            dry_now = False
+            if not dry and yn[6] <= m_dry:
+                dry_now = True
+                a = 0.0
+                b = 1.0
+                for _ in range(60):
+                    mid = 0.5 * (a + b)
+                    if _herm(y[6], k1[6], yn[6], k1n[6], h, mid) <= m_dry:
+                        b = mid
+                    else:
+                        a = mid
+                thd = b
+            # with stop="landing" a case that runs dry ends at thd
+            bend = thd if stop_landing else 1.0
+            # sliding-variable bands, linear between nodes (up to the dry-mass stop)
+            for ax in range(3):
+                s_new[ax] = yn[ax]
+                s_new[3 + ax] = S2[ax]  # from the rhs call at the new node
+            for j in range(6):
+                lo, hi = _band(s_old[j], s_new[j], eps)
+                if lo <= hi and lo <= bend:
+                    if math.isnan(tf[j]):
+                        tf[j] = t + lo * h
+                    if hi < bend:
+                        tx[j] = t + hi * h
+                s_old[j] = s_new[j]
+            if not ended:
+                # metrics until the outcome (landing or dry mass): command at the step's
+                # left node
+                sat = False
+                for ax in range(3):
+                    pk[ax] = max(pk[ax], abs(F[ax]))
+                    pku[ax] = max(pku[ax], abs(Fu[ax]))
+                    if F[ax] != Fu[ax]:
+                        sat = True
+                rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
+                vn = math.sqrt(yn[3] ** 2 + yn[4] ** 2 + yn[5] ** 2)
+                frac = thd
+                if rn <= tol_r and vn <= tol_v:
+                    # bisection on L(th) = max(|r|/tol_r, |v|/tol_v) - 1, Hermite in th
+                    a = 0.0
+                    b = 1.0
+                    for _ in range(60):
+                        mid = 0.5 * (a + b)
+                        rr = 0.0
+                        vv = 0.0
+                        for ax in range(3):
+                            rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, mid) ** 2
+                            vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h,
+                                        mid) ** 2
+                        if math.sqrt(rr) <= tol_r and math.sqrt(vv) <= tol_v:
+                            b = mid
+                        else:
+                            a = mid
+                    if b <= thd:  # landed before (or as) the mass reached m_dry
+                        frac = b
+                        has_landed = True
+                        tl = t + b * h
+                        for ax in range(3):
+                            r_land[i, ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, b)
+                            v_land[i, ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax],
+                                                  k1n[3 + ax], h, b)
+                        fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)
+                        if stop_landing:
+                            dry_now = False  # the case ends at landing, above m_dry
+                if dry_now and not has_landed:  # out of propellant before landing
+                    fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, thd)
+                if sat:
+                    ts += frac * h
+                zn = yn[2] if not dry_now else _herm(y[2], k1[2], yn[2], k1n[2], h, thd)
+                if zn < za:
+                    za = zn
+                if zn < 0.0 and not has_landed:
+                    gc = True
+                if has_landed:  # the command at the landing node counts too
+                    for ax in range(3):
+                        pk[ax] = max(pk[ax], abs(Fn[ax]))
+                        pku[ax] = max(pku[ax], abs(Fun[ax]))
+            if dry_now:
+                dry = True
+                if stop_landing:  # out of propellant: the case ends at th = thd
+                    for j in range(7):
+                        y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, thd)
+                    t = t + thd * h
+                    break
+            for j in range(7):
+                y[j] = yn[j]
+                k1[j] = k1n[j]
+            for ax in range(3):
+                F[ax] = Fn[ax]
+                Fu[ax] = Fun[ax]
+            t = t_new
+            step += 1
+            if record:
+                for j in range(7):
+                    rec_y[i, step, j] = y[j]
+                for ax in range(3):
+                    rec_F[i, step, ax] = F[ax]
+        landed[i] = has_landed
+        fexh[i] = dry
+        t_land[i] = tl
+        if not has_landed:
+            if not dry:
+                fuel[i] = m0[i] - y[6]
+            for ax in range(3):
+                r_land[i, ax] = np.nan
+                v_land[i, ax] = np.nan
+        for ax in range(3):
+            peak[i, ax] = pk[ax]
+            peak_u[i, ax] = pku[ax]
+            ts1[i, ax] = tf[ax]
+            ts2[i, ax] = tf[3 + ax]
+            ts1x[i, ax] = tx[ax]
+            ts2x[i, ax] = tx[3 + ax]
+        tsat[i] = ts
+        minalt[i] = za
+        ground[i] = gc
+        nonfinite[i] = bad
+        t_end[i] = t
+        for j in range(7):
+            y_end[i, j] = yn[j] if bad else y[j]
+
+    return case
+
+
+@cache
+def _compile(law: str, parallel: bool = True):
+    """Build the RK4 kernel for one law (numba compiles it on first call, ~20 s).
+
+    parallel=False gives the same loop without threads, for executors (dask) that parallelise
+    over chunks themselves."""
+    case = _case_fn(law)
+
     @numba.njit(error_model="numpy", parallel=parallel)
     def kernel(r0, v0, m0, P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dcoef,
                domega, dphase, dt, nsteps, eps, tol_r, tol_v, stop_landing, record, m_dry,
                landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground,
                ts1, ts2, ts1x, ts2x, nonfinite, fexh, t_end, y_end, rec_y, rec_F):
-        n = r0.shape[0]
-        P_ = P
-        SP_ = SP
-        grav_ = grav
-        area_ = area
-        damp_ = damp
-        for i in numba.prange(n):
-            # Thread-local copies: passing the shared arrays to rhs() reference-counts them
-            # atomically from both threads at every call, which doubled the cost per step.
-            P = P_.copy()
-            SP = SP_.copy()
-            grav = grav_.copy()
-            area = area_.copy()
-            damp = damp_.copy()
-            y = np.empty(7)
-            yn = np.empty(7)
-            yt = np.empty(7)
-            k1 = np.empty(7)
-            k1n = np.empty(7)
-            k2 = np.empty(7)
-            k3 = np.empty(7)
-            k4 = np.empty(7)
-            F = np.empty(3)
-            Fu = np.empty(3)
-            Fn = np.empty(3)
-            Fun = np.empty(3)
-            s_old = np.empty(6)
-            s_new = np.empty(6)
-            tf = np.full(6, np.nan)  # first entry, s1 x/y/z then s2 x/y/z
-            tx = np.full(6, np.nan)  # last exit
-            dc = dcoef[i].copy()
-            dw = domega[i].copy()
-            dp = dphase[i].copy()
-            for ax in range(3):
-                y[ax] = r0[i, ax]
-                y[3 + ax] = v0[i, ax]
-            y[6] = m0[i]
-            pk = np.zeros(3)
-            pku = np.zeros(3)
-            ts = 0.0
-            za = y[2]
-            gc = y[2] < 0.0
-            has_landed = False
-            bad = False
-            dry = False
-            tl = np.nan
-            rhs(0.0, y, k1, F, Fu, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc,
-                dw, dp, SP)
-            for ax in range(3):
-                s_old[ax] = y[ax]
-                s_old[3 + ax] = s2_fn(y[ax], y[3 + ax], SP[ax, 0], SP[ax, 1], SP[ax, 2],
-                                      SP[ax, 3])
-            for j in range(6):
-                if abs(s_old[j]) <= eps:
-                    tf[j] = 0.0
-            if (math.sqrt(y[0] ** 2 + y[1] ** 2 + y[2] ** 2) <= tol_r
-                    and math.sqrt(y[3] ** 2 + y[4] ** 2 + y[5] ** 2) <= tol_v):
-                has_landed = True
-                tl = 0.0
-                for ax in range(3):
-                    r_land[i, ax] = y[ax]
-                    v_land[i, ax] = y[3 + ax]
-                fuel[i] = 0.0
-            if record:
-                for j in range(7):
-                    rec_y[i, 0, j] = y[j]
-                for ax in range(3):
-                    rec_F[i, 0, ax] = F[ax]
-            t = 0.0
-            step = 0
-            while step < nsteps:
-                if has_landed and stop_landing:
-                    break
-                h = dt
-                # classical RK4
-                for j in range(7):
-                    yt[j] = y[j] + 0.5 * h * k1[j]
-                rhs(t + 0.5 * h, yt, k2, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim,
-                    dkind, damp, dc, dw, dp, SP)
-                for j in range(7):
-                    yt[j] = y[j] + 0.5 * h * k2[j]
-                rhs(t + 0.5 * h, yt, k3, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim,
-                    dkind, damp, dc, dw, dp, SP)
-                for j in range(7):
-                    yt[j] = y[j] + h * k3[j]
-                rhs(t + h, yt, k4, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim,
-                    dkind, damp, dc, dw, dp, SP)
-                finite = True
-                for j in range(7):
-                    yn[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
-                    if not math.isfinite(yn[j]):
-                        finite = False
-                t_new = (step + 1) * dt
-                if not finite:
-                    bad = True
-                    break
-                # derivative and command at the new node (reused as the next step's k1)
-                rhs(t_new, yn, k1n, Fn, Fun, P, grav, area, pkind, gkind, c, fmax, lim, dkind,
-                    damp, dc, dw, dp, SP)
-                # dry mass: first th with m(th) <= m_dry, bisection on the Hermite interpolant
-                ended = has_landed or dry  # the case's outcome was reached before this step
-                thd = 1.0
-                dry_now = False
-                if not dry and yn[6] <= m_dry:
-                    dry_now = True
-                    a = 0.0
-                    b = 1.0
-                    for _ in range(60):
-                        mid = 0.5 * (a + b)
-                        if _herm(y[6], k1[6], yn[6], k1n[6], h, mid) <= m_dry:
-                            b = mid
-                        else:
-                            a = mid
-                    thd = b
-                # with stop="landing" a case that runs dry ends at thd
-                bend = thd if stop_landing else 1.0
-                # sliding-variable bands, linear between nodes (up to the dry-mass stop)
-                for ax in range(3):
-                    s_new[ax] = yn[ax]
-                    s_new[3 + ax] = s2_fn(yn[ax], yn[3 + ax], SP[ax, 0], SP[ax, 1], SP[ax, 2],
-                                          SP[ax, 3])
-                for j in range(6):
-                    lo, hi = _band(s_old[j], s_new[j], eps)
-                    if lo <= hi and lo <= bend:
-                        if math.isnan(tf[j]):
-                            tf[j] = t + lo * h
-                        if hi < bend:
-                            tx[j] = t + hi * h
-                    s_old[j] = s_new[j]
-                if not ended:
-                    # metrics until the outcome (landing or dry mass): command at the step's
-                    # left node
-                    sat = False
-                    for ax in range(3):
-                        pk[ax] = max(pk[ax], abs(F[ax]))
-                        pku[ax] = max(pku[ax], abs(Fu[ax]))
-                        if F[ax] != Fu[ax]:
-                            sat = True
-                    rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
-                    vn = math.sqrt(yn[3] ** 2 + yn[4] ** 2 + yn[5] ** 2)
-                    frac = thd
-                    if rn <= tol_r and vn <= tol_v:
-                        # bisection on L(th) = max(|r|/tol_r, |v|/tol_v) - 1, Hermite in th
-                        a = 0.0
-                        b = 1.0
-                        for _ in range(60):
-                            mid = 0.5 * (a + b)
-                            rr = 0.0
-                            vv = 0.0
-                            for ax in range(3):
-                                rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, mid) ** 2
-                                vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h,
-                                            mid) ** 2
-                            if math.sqrt(rr) <= tol_r and math.sqrt(vv) <= tol_v:
-                                b = mid
-                            else:
-                                a = mid
-                        if b <= thd:  # landed before (or as) the mass reached m_dry
-                            frac = b
-                            has_landed = True
-                            tl = t + b * h
-                            for ax in range(3):
-                                r_land[i, ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, b)
-                                v_land[i, ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax],
-                                                      k1n[3 + ax], h, b)
-                            fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)
-                            if stop_landing:
-                                dry_now = False  # the case ends at landing, above m_dry
-                    if dry_now and not has_landed:  # out of propellant before landing
-                        fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, thd)
-                    if sat:
-                        ts += frac * h
-                    zn = yn[2] if not dry_now else _herm(y[2], k1[2], yn[2], k1n[2], h, thd)
-                    if zn < za:
-                        za = zn
-                    if zn < 0.0 and not has_landed:
-                        gc = True
-                    if has_landed:  # the command at the landing node counts too
-                        for ax in range(3):
-                            pk[ax] = max(pk[ax], abs(Fn[ax]))
-                            pku[ax] = max(pku[ax], abs(Fun[ax]))
-                if dry_now:
-                    dry = True
-                    if stop_landing:  # out of propellant: the case ends at th = thd
-                        for j in range(7):
-                            y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, thd)
-                        t = t + thd * h
-                        break
-                for j in range(7):
-                    y[j] = yn[j]
-                    k1[j] = k1n[j]
-                for ax in range(3):
-                    F[ax] = Fn[ax]
-                    Fu[ax] = Fun[ax]
-                t = t_new
-                step += 1
-                if record:
-                    for j in range(7):
-                        rec_y[i, step, j] = y[j]
-                    for ax in range(3):
-                        rec_F[i, step, ax] = F[ax]
-            landed[i] = has_landed
-            fexh[i] = dry
-            t_land[i] = tl
-            if not has_landed:
-                if not dry:
-                    fuel[i] = m0[i] - y[6]
-                for ax in range(3):
-                    r_land[i, ax] = np.nan
-                    v_land[i, ax] = np.nan
-            for ax in range(3):
-                peak[i, ax] = pk[ax]
-                peak_u[i, ax] = pku[ax]
-                ts1[i, ax] = tf[ax]
-                ts2[i, ax] = tf[3 + ax]
-                ts1x[i, ax] = tx[ax]
-                ts2x[i, ax] = tx[3 + ax]
-            tsat[i] = ts
-            minalt[i] = za
-            ground[i] = gc
-            nonfinite[i] = bad
-            t_end[i] = t
-            for j in range(7):
-                y_end[i, j] = yn[j] if bad else y[j]
+        for i in numba.prange(r0.shape[0]):
+            case(i, r0, v0, m0, P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dcoef,
+                 domega, dphase, dt, nsteps, eps, tol_r, tol_v, stop_landing, record, m_dry,
+                 landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground,
+                 ts1, ts2, ts1x, ts2x, nonfinite, fexh, t_end, y_end, rec_y, rec_F)
 
     return kernel
 
@@ -599,10 +626,19 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
     rec_y = np.full(shape_rec + (7,), np.nan)
     rec_F = np.full(shape_rec + (3,), np.nan)
 
+    dkind = KIND_CODE[disturbance]
+    if dkind == KIND_CODE["sin"]:  # A sin(t) = the "random" form with c = A, w = 1, phase 0
+        dkind = KIND_CODE["random"]
+
     def run(sl: slice) -> None:
         ds = dist_spec.take(sl)
+        if disturbance == "sin":
+            k = sl.stop - sl.start
+            ds = DisturbanceSpec("random", ds.amplitude,
+                                 np.tile(ds.amplitude[None, :, None], (k, 1, 1)),
+                                 np.ones((k, 3, 1)), np.zeros((k, 3, 1)))
         kernel(r0[sl], v0[sl], m0[sl], P, SP, G_MARS.astype(float), AREA.astype(float), pkind,
-               gkind, c, fmax, lim, KIND_CODE[disturbance], ds.amplitude,
+               gkind, c, fmax, lim, dkind, ds.amplitude,
                np.ascontiguousarray(ds.coef), np.ascontiguousarray(ds.omega),
                np.ascontiguousarray(ds.phase), dt, nsteps, eps, float(land_tol[0]),
                float(land_tol[1]), stop == "landing", record, m_dry,
