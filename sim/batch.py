@@ -171,79 +171,23 @@ def _case_fn(law: str):
     """The RK4 integration of one case for one law (shared by the parallel and serial kernels)."""
     law_fn = numba_law_s2(law)
 
-    @numba.njit(error_model="numpy", inline="always")
-    def rhs(t, y, dy, F, Fu, S2, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc,
-            dw, dp, SP):
-        """y' at (t, y) into dy; the command after / before the limit into F / Fu and s2 (21)
-        per axis into S2 (computed with the law)."""
-        m = y[6]
-        fac_g = _drag_fac(gkind, y[2])
-        fac_p = fac_g if pkind == gkind else _drag_fac(pkind, y[2])
-        for ax in range(3):
-            am = _drag(gkind, fac_g, y[3 + ax], area[ax], m)
-            a, S2[ax] = law_fn(y[ax], y[3 + ax], grav[ax], am, m, P, SP, ax)
-            Fu[ax] = m * a
-        if lim == 1:
-            for ax in range(3):
-                f = Fu[ax]
-                F[ax] = fmax if f > fmax else (-fmax if f < -fmax else f)
-        elif lim == 2:
-            ninf = 0
-            for ax in range(3):
-                if math.isinf(Fu[ax]):
-                    ninf += 1
-            if ninf > 0:  # direction of the infinite components, then scale to the limit
-                for ax in range(3):
-                    F[ax] = (1.0 if Fu[ax] > 0 else -1.0) if math.isinf(Fu[ax]) else 0.0
-            else:
-                for ax in range(3):
-                    F[ax] = Fu[ax]
-            n = math.sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2])
-            if n > fmax or ninf > 0:
-                for ax in range(3):
-                    F[ax] = F[ax] * (fmax / n)
-        else:
-            for ax in range(3):
-                F[ax] = Fu[ax]
-        fn = math.sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2])
-        for ax in range(3):
-            # "sin" arrives here as kind 2 with one unit-frequency term (simulate_batch): a
-            # separate one-call branch was executed speculatively by LLVM at every RHS
-            if dkind == 2:
-                ap = 0.0
-                for k in range(dc.shape[1]):
-                    ap += dc[ax, k] * math.sin(dw[ax, k] * t + dp[ax, k])
-            elif dkind == 3:
-                s2 = S2[ax]
-                ap = -damp[ax] * (1.0 if s2 > 0 else (-1.0 if s2 < 0 else 0.0))
-            else:
-                ap = 0.0
-            dy[ax] = y[3 + ax]
-            dy[3 + ax] = F[ax] / m + grav[ax] + _drag(pkind, fac_p, y[3 + ax], area[ax], m) + ap
-        dy[6] = -fn / c
-
     @numba.njit(error_model="numpy")
-    def case(i, r0, v0, m0, P_, SP_, grav_, area_, pkind, gkind, c, fmax, lim, dkind, damp_, dcoef,
+    def case(i, r0, v0, m0, P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dcoef,
              domega, dphase, dt, nsteps, eps, tol_r, tol_v, stop_landing, record, m_dry,
              landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground,
              ts1, ts2, ts1x, ts2x, nonfinite, fexh, t_end, y_end, rec_y, rec_F):
         """Case i from start to its end (rhs is inlined here, in a serial function: inlined
         into the prange loop itself, the parallel compile took minutes)."""
-        # Thread-local copies: passing the shared arrays to rhs() reference-counts them
-        # atomically from both threads at every call, which doubled the cost per step.
-        P = P_.copy()
-        SP = SP_.copy()
-        grav = grav_.copy()
-        area = area_.copy()
-        damp = damp_.copy()
-        y = np.empty(7)
-        yn = np.empty(7)
-        yt = np.empty(7)
-        k1 = np.empty(7)
-        k1n = np.empty(7)
-        k2 = np.empty(7)
-        k3 = np.empty(7)
-        k4 = np.empty(7)
+        Y = np.empty((3, 7))  # y, the stage input, the new node
+        K = np.empty((5, 7))  # k1, k2, k3, k4 and k1n (y' at the new node)
+        y = Y[0]
+        yt = Y[1]
+        yn = Y[2]
+        k1 = K[0]
+        k2 = K[1]
+        k3 = K[2]
+        k4 = K[3]
+        k1n = K[4]
         F = np.empty(3)
         Fu = np.empty(3)
         Fn = np.empty(3)
@@ -269,8 +213,65 @@ def _case_fn(law: str):
         dry = False
         tl = np.nan
         S2 = np.empty(3)
-        rhs(0.0, y, k1, F, Fu, S2, P, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, dc,
-            dw, dp, SP)
+
+        def rhs(t, yr, kr):
+            """y' at (t, Y[yr]) into K[kr], the command after / before the limit into Fn / Fun and
+            s2 (21) per axis into S2 (computed with the law).
+
+            A closure over the case's arrays, inlined by numba at its call sites: passing a
+            dozen arrays as arguments cost an atomic incref/decref pair each per call (~20 %
+            of a step)."""
+            m = Y[yr, 6]
+            fac_g = _drag_fac(gkind, Y[yr, 2])
+            fac_p = fac_g if pkind == gkind else _drag_fac(pkind, Y[yr, 2])
+            for ax in range(3):
+                am = _drag(gkind, fac_g, Y[yr, 3 + ax], area[ax], m)
+                a, S2[ax] = law_fn(Y[yr, ax], Y[yr, 3 + ax], grav[ax], am, m, P, SP, ax)
+                Fun[ax] = m * a
+            if lim == 1:
+                for ax in range(3):
+                    f = Fun[ax]
+                    Fn[ax] = fmax if f > fmax else (-fmax if f < -fmax else f)
+            elif lim == 2:
+                ninf = 0
+                for ax in range(3):
+                    if math.isinf(Fun[ax]):
+                        ninf += 1
+                if ninf > 0:  # direction of the infinite components, then scale to the limit
+                    for ax in range(3):
+                        Fn[ax] = (1.0 if Fun[ax] > 0 else -1.0) if math.isinf(Fun[ax]) else 0.0
+                else:
+                    for ax in range(3):
+                        Fn[ax] = Fun[ax]
+                n = math.sqrt(Fn[0] * Fn[0] + Fn[1] * Fn[1] + Fn[2] * Fn[2])
+                if n > fmax or ninf > 0:
+                    for ax in range(3):
+                        Fn[ax] = Fn[ax] * (fmax / n)
+            else:
+                for ax in range(3):
+                    Fn[ax] = Fun[ax]
+            fn = math.sqrt(Fn[0] * Fn[0] + Fn[1] * Fn[1] + Fn[2] * Fn[2])
+            for ax in range(3):
+                # "sin" arrives here as kind 2 with one unit-frequency term (simulate_batch): a
+                # separate one-call branch was executed speculatively by LLVM at every RHS
+                if dkind == 2:
+                    ap = 0.0
+                    for k in range(dc.shape[1]):
+                        ap += dc[ax, k] * math.sin(dw[ax, k] * t + dp[ax, k])
+                elif dkind == 3:
+                    s2 = S2[ax]
+                    ap = -damp[ax] * (1.0 if s2 > 0 else (-1.0 if s2 < 0 else 0.0))
+                else:
+                    ap = 0.0
+                K[kr, ax] = Y[yr, 3 + ax]
+                K[kr, 3 + ax] = (Fn[ax] / m + grav[ax]
+                                 + _drag(pkind, fac_p, Y[yr, 3 + ax], area[ax], m) + ap)
+            K[kr, 6] = -fn / c
+
+        rhs(0.0, 0, 0)  # y' and the command at t = 0
+        for ax in range(3):
+            F[ax] = Fn[ax]
+            Fu[ax] = Fun[ax]
         for ax in range(3):
             s_old[ax] = y[ax]
             s_old[3 + ax] = S2[ax]
@@ -302,8 +303,7 @@ def _case_fn(law: str):
             t_new = (step + 1) * dt
             finite = True
             for stage in range(4):
-                yin = yt
-                kout = k2
+                yr = 1
                 tst = t + 0.5 * h
                 if stage == 0:
                     for j in range(7):
@@ -311,11 +311,9 @@ def _case_fn(law: str):
                 elif stage == 1:
                     for j in range(7):
                         yt[j] = y[j] + 0.5 * h * k2[j]
-                    kout = k3
                 elif stage == 2:
                     for j in range(7):
                         yt[j] = y[j] + h * k3[j]
-                    kout = k4
                     tst = t + h
                 else:
                     for j in range(7):
@@ -325,11 +323,9 @@ def _case_fn(law: str):
                     if not finite:
                         break
                     # derivative and command at the new node (reused as the next step's k1)
-                    yin = yn
-                    kout = k1n
+                    yr = 2
                     tst = t_new
-                rhs(tst, yin, kout, Fn, Fun, S2, P, grav, area, pkind, gkind, c, fmax, lim, dkind,
-                    damp, dc, dw, dp, SP)
+                rhs(tst, yr, stage + 1)
             if not finite:
                 bad = True
                 break
