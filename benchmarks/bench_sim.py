@@ -3,6 +3,7 @@
     /work/venv/bin/python benchmarks/bench_sim.py                 # (a), (b), (c), numpy batch
     /work/venv/bin/python benchmarks/bench_sim.py --million       # + 1,000,000 Table II landings
     /work/venv/bin/python benchmarks/bench_sim.py --floor         # chattering floor vs dt
+    /work/venv/bin/python benchmarks/bench_sim.py --dt-sweep      # accuracy, landing, speed vs dt
 
 Measures, on Table II cases (seed 000, corrected law, default gains, physical drag):
   (a) a per-case scipy solve_ivp loop (RK45, rtol = atol = 1e-8, landing event) written as a
@@ -14,7 +15,13 @@ Measures, on Table II cases (seed 000, corrected law, default gains, physical dr
   (d) the same batched RK4 in plain numpy arrays (no numba, no events): what batching alone
       buys, to show whether numba pays;
 and prints cases/second, the ratios (c)/(a), (c)/(b), (c)/(d), and the accuracy of (c)
-against (a): landing time and landing position.
+against (a): landing time and landing position.  Each route is warmed up on one case first
+(lambdify / compile / first-call costs are not part of the per-case rate).
+
+--dt-sweep: for each dt, (c)'s accuracy against (a) and against the tight LSODA reference
+(Table II, and Table III with the 50 kN limit), the fraction of Table II cases that meet the
+landing criterion (|r| <= 0.1 m, |v| <= 0.1 m/s) by t_max, and cases/s: at which dt the
+fixed step stops meeting the targets, and what (c)/(a) = 1000 would require.
 """
 
 from __future__ import annotations
@@ -113,6 +120,55 @@ def chatter_floor(g, dts=(0.01, 0.02, 0.05, 0.1, 0.2)) -> None:
               f"{0.85 * dt**1.5:12.2e}")
 
 
+def dt_sweep(g, dts=(0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5), n_acc: int = 20,
+             n_land: int = 4000) -> None:
+    """Accuracy and landing criterion against dt (see the module docstring)."""
+    from sim.campaign import table3_states
+    from sim.reference import simulate_reference
+
+    r0, v0, m0 = table2_states(max(n_acc, n_land), seed=0)
+    user_solve_ivp(r0[:1], v0[:1], m0[:1], g)  # warm-up
+    t = time.perf_counter()
+    tl_a, rl_a = user_solve_ivp(r0[:n_acc], v0[:n_acc], m0[:n_acc], g)
+    rate_a = n_acc / (time.perf_counter() - t)
+    ref2 = simulate_reference(r0[:n_acc], v0[:n_acc], m0[:n_acc], g)
+    s3 = table3_states(6, seed=0)
+    ref3 = simulate_reference(*s3, g, thrust_limit=50e3)
+    print(f"(a) {rate_a:.1f} cases/s ({n_acc} Table II cases): (c)/(a) = 1000 needs "
+          f"{1000 * rate_a:.0f} cases/s")
+    print(f"{'dt s':>5} | {'Table II vs (a): dT s':>21} {'dr m':>8} | {'vs LSODA: dT s':>14} "
+          f"{'dr m':>8} | {'Table III 50 kN: dT s':>21} {'dr m':>8} | {'landed':>13} | "
+          f"{'steps':>5} {'cases/s':>8}")
+
+    def err(b, tl, rl):
+        both = b.landed & np.isfinite(tl)
+        dT = np.abs(b.landing_time - tl)[both]
+        dR = np.linalg.norm(b.r_land - rl, axis=1)[both]
+        miss = int(np.sum(b.landed != np.isfinite(tl)))
+        tag = f" ({miss} miss)" if miss else ""
+        return (f"{dT.max() if dT.size else np.nan:>9.1e}{tag:>12} "
+                f"{dR.max() if dR.size else np.nan:>8.1e}")
+
+    for dt in dts:
+        simulate_batch(r0[:2], v0[:2], m0[:2], g, dt=dt)
+        t = time.perf_counter()
+        b = simulate_batch(r0[:n_land], v0[:n_land], m0[:n_land], g, dt=dt)
+        rate = n_land / (time.perf_counter() - t)
+        b3 = simulate_batch(*s3, g, dt=dt, thrust_limit=50e3)
+        steps = np.mean(b.t_end / dt)
+        print(f"{dt:5.2f} | {err(_head(b, n_acc), tl_a, rl_a):>30} | "
+              f"{err(_head(b, n_acc), ref2.landing_time, ref2.r_land):>23} | "
+              f"{err(b3, ref3.landing_time, ref3.r_land):>30} | "
+              f"{b.landed.sum():>6}/{n_land:<6} | {steps:5.0f} {rate:8.0f}")
+
+
+def _head(b, n: int):
+    """The first n cases of a BatchResult (landing fields only)."""
+    from types import SimpleNamespace
+    return SimpleNamespace(landed=b.landed[:n], landing_time=b.landing_time[:n],
+                           r_land=b.r_land[:n])
+
+
 def million(g, dt: float, n: int = 1_000_000, chunk: int = 100_000) -> None:
     """Fly n Table II cases in chunks (seeded per chunk), keeping only the statistics."""
     from rich.progress import Progress
@@ -153,12 +209,17 @@ def main() -> None:
     ap.add_argument("--million-n", type=int, default=1_000_000,
                     help="cases for --million (fewer: the 1e6 time is extrapolated, and said so)")
     ap.add_argument("--floor", action="store_true", help="only the chattering-floor table")
+    ap.add_argument("--dt-sweep", action="store_true",
+                    help="only the accuracy / landing / speed table against dt")
     args = ap.parse_args()
     g = default_gains()
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} "
           "(other processes share the cores: numbers are lower bounds)")
     if args.floor:
         chatter_floor(g)
+        return
+    if args.dt_sweep:
+        dt_sweep(g)
         return
     r0, v0, m0 = table2_states(max(args.n_batch, args.n_ivp), seed=0)
 
@@ -172,17 +233,20 @@ def main() -> None:
           f"({b.landed.sum()} landed)")
 
     n = args.n_ivp
+    user_solve_ivp(r0[:1], v0[:1], m0[:1], g)  # warm-up: lambdify, first calls
     t = time.perf_counter()
     tl_a, rl_a = user_solve_ivp(r0[:n], v0[:n], m0[:n], g)
     rate_a = n / (time.perf_counter() - t)
     print(f"(a) solve_ivp RK45 1e-8 loop: {n} cases, {rate_a:.2f} cases/s")
 
+    python_control(r0[:1], v0[:1], m0[:1], g)  # warm-up
     t = time.perf_counter()
     python_control(r0[:args.n_control], v0[:args.n_control], m0[:args.n_control], g)
     rate_b = args.n_control / (time.perf_counter() - t)
     print(f"(b) python-control input_output_response: {args.n_control} cases, "
           f"{rate_b:.2f} cases/s")
 
+    numpy_batch(r0[:2], v0[:2], m0[:2], g, dt=args.dt)  # warm-up
     t = time.perf_counter()
     numpy_batch(r0[:args.n_numpy], v0[:args.n_numpy], m0[:args.n_numpy], g, dt=args.dt)
     rate_d = args.n_numpy / (time.perf_counter() - t)

@@ -176,8 +176,8 @@ def _case_fn(law: str):
              domega, dphase, dt, nsteps, eps, tol_r, tol_v, stop_landing, record, m_dry,
              landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground,
              ts1, ts2, ts1x, ts2x, nonfinite, fexh, t_end, y_end, rec_y, rec_F):
-        """Case i from start to its end (rhs is inlined here, in a serial function: inlined
-        into the prange loop itself, the parallel compile took minutes)."""
+        """Case i from start to its end.  A serial function called from the kernels' loop:
+        with the inlined rhs in the prange body itself the parallel compile took minutes."""
         Y = np.empty((3, 7))  # y, the stage input, the new node
         K = np.empty((5, 7))  # k1, k2, k3, k4 and k1n (y' at the new node)
         y = Y[0]
@@ -459,7 +459,8 @@ def _case_fn(law: str):
 
 @cache
 def _compile(law: str, parallel: bool = True):
-    """Build the RK4 kernel for one law (numba compiles it on first call, ~20 s).
+    """Build the RK4 kernel for one law (numba compiles it on first call: ~10 s for the case
+    function, shared, plus ~10 s for a parallel kernel, ~1 s for a serial one).
 
     parallel=False gives the same loop without threads, for executors (dask) that parallelise
     over chunks themselves."""
