@@ -120,7 +120,7 @@ def chatter_floor(g, dts=(0.01, 0.02, 0.05, 0.1, 0.2)) -> None:
               f"{0.85 * dt**1.5:12.2e}")
 
 
-def dt_sweep(g, dts=(0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5), n_acc: int = 20,
+def dt_sweep(g, dts=(0.05, 0.06, 0.07, 0.08, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5), n_acc: int = 20,
              n_land: int = 4000) -> None:
     """Accuracy and landing criterion against dt (see the module docstring)."""
     from sim.campaign import table3_states
