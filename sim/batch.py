@@ -118,6 +118,22 @@ class BatchResult:
             kw[k] = np.concatenate([getattr(p, k) for p in parts])
         return BatchResult(eps=first.eps, dt=first.dt, info=dict(first.info), **kw)
 
+    def with_rows(self, idx: np.ndarray, other: BatchResult) -> BatchResult:
+        """A copy with cases ``idx`` replaced by the cases of ``other`` (in order), e.g. the
+        same initial states re-flown at a smaller dt; ``info["replaced"]`` lists them."""
+        idx = np.asarray(idx, dtype=np.int64)
+        if len(idx) != len(other):
+            raise ValueError(f"with_rows: {len(idx)} indices for {len(other)} cases")
+        kw: dict[str, Any] = {}
+        for k in ARRAY_FIELDS:
+            a = getattr(self, k).copy()
+            a[idx] = getattr(other, k)
+            kw[k] = a
+        info = dict(self.info)
+        info["replaced"] = sorted({*info.get("replaced", []), *idx.tolist()})
+        return BatchResult(eps=self.eps, dt=self.dt, r0=self.r0, v0=self.v0, m0=self.m0,
+                           info=info, **kw)
+
     def equal(self, other: BatchResult) -> bool:
         """Bitwise equality of every per-case array (NaN == NaN)."""
         return all(np.array_equal(getattr(self, k), getattr(other, k), equal_nan=True)

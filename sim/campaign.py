@@ -182,9 +182,9 @@ def summarize(res: BatchResult) -> dict[str, Any]:
         "cases": len(res), "landed": int(res.landed.sum()),
         "not_landed": int((~res.landed).sum()), "nonfinite": int(res.nonfinite.sum()),
         "ground_contact": int(res.ground_contact.sum()),
-        # fuel used beyond the propellant of Table I's lander (m0 - dry mass 1505 kg): the
-        # plant has no dry-mass stop, so such a case is flagged, not cut short
-        "fuel_over_propellant": int(np.sum(res.fuel > res.m0 - M_DRY)),
+        # the mass reached the dry mass before landing (sim.batch: the case stops there)
+        "fuel_exhausted": int(np.sum(res.fuel_exhausted & ~res.landed)),
+        "m_dry": res.info.get("m_dry", M_DRY),
         "landing_error_m": _stats(err),
         "landing_speed_mps": _stats(np.linalg.norm(res.v_land[ok], axis=1) if ok.any()
                                     else np.array([])),
@@ -224,7 +224,8 @@ def case_records(res: BatchResult) -> list[dict[str, Any]]:
             "t_s1": [_num(x) for x in res.t_s1[i]], "t_s2": [_num(x) for x in res.t_s2[i]],
             "t_s1_last_exit": [_num(x) for x in res.t_s1_last_exit[i]],
             "t_s2_last_exit": [_num(x) for x in res.t_s2_last_exit[i]],
-            "nonfinite": bool(res.nonfinite[i]), "t_end": _num(res.t_end[i]),
+            "nonfinite": bool(res.nonfinite[i]), "fuel_exhausted": bool(res.fuel_exhausted[i]),
+            "t_end": _num(res.t_end[i]),
             "eps": res.eps,
         })
     return recs

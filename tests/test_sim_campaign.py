@@ -103,7 +103,22 @@ def test_cli_csv_states_and_out(tmp_path) -> None:
     assert (out / "summary.json").exists() and (out / "cases.csv").exists()
 
 
+def test_cli_m_dry_stops_a_case_out_of_propellant() -> None:
+    """Table I needs ~235 kg: with 25 kg of propellant the case runs dry, is not landed, and
+    used exactly m0 - m_dry."""
+    res = _cli(["simulate", "mars", "--m-dry", str(M0 - 25.0), "--json"])
+    assert res.exception is None, res.output
+    data = json.loads(res.output)
+    (case,) = data["cases"]
+    assert case["fuel_exhausted"] and not case["landed"] and case["landing_time"] is None
+    assert case["fuel"] == pytest.approx(25.0, abs=1e-9)
+    assert data["summary"]["fuel_exhausted"] == 1 and data["summary"]["m_dry"] == M0 - 25.0
+    full = json.loads(_cli(["simulate", "mars", "--json"]).output)
+    assert full["summary"]["fuel_exhausted"] == 0 and not full["cases"][0]["fuel_exhausted"]
+
+
 @pytest.mark.parametrize("args,name", [
+    (["--m-dry", str(M0 + 1.0)], "m_dry"), (["--m-dry", "-1"], "m_dry"),
     (["--law", "pid"], "--law"), (["--dispersion", "table9"], "--dispersion"),
     (["--cases", "5"], "--cases"), (["--dispersion", "table2", "--cases", "0"], "cases"),
     (["--thrust-max", "-3"], "--thrust-max"), (["--dt", "0"], "dt"),

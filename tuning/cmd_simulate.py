@@ -47,6 +47,7 @@ from theory.parameters import (
     LAND_POS_TOL,
     LAND_VEL_TOL,
     M0,
+    M_DRY,
     R0,
     THRUST_MAX_AXIS,
     V0,
@@ -106,7 +107,7 @@ def _print_fig6(out: dict[str, Any], console: Console) -> None:
 def _print_summary(summ: dict[str, Any], console: Console) -> None:
     t = Table(title=f"{summ['cases']} cases: {summ['landed']} landed, {summ['nonfinite']} "
                     f"non-finite, {summ['ground_contact']} ground contacts, "
-                    f"{summ['fuel_over_propellant']} over the propellant "
+                    f"{summ['fuel_exhausted']} out of propellant (m_dry {summ['m_dry']:g} kg) "
                     f"(eps = {summ['eps']}, dt = {summ['dt']} s)")
     for c in ("quantity (landed cases)", "min", "median", "max"):
         t.add_column(c, justify="right")
@@ -132,7 +133,9 @@ def _print_cases(recs: list[dict[str, Any]], console: Console) -> None:
         rl = rec["r_land"]
         ts2 = [x for x in rec["t_s2"] if x is not None]
         flags = " ".join(f for f, on in (("NONFINITE", rec["nonfinite"]),
-                                         ("GROUND", rec["ground_contact"])) if on)
+                                         ("GROUND", rec["ground_contact"]),
+                                         ("DRY", rec["fuel_exhausted"] and not rec["landed"]))
+                         if on)
         peak = "/".join(_fmt(None if p is None else p / 1e3, ".1f") for p in rec["peak_thrust"])
         t.add_row(str(rec["case"]), "yes" if rec["landed"] else "NO",
                   _fmt(rec["landing_time"], ".2f"),
@@ -165,6 +168,8 @@ def _print_cases(recs: list[dict[str, Any]], console: Console) -> None:
 @click.option("--guidance-drag", default=None,
               help="drag model the law cancels (default: the plant's --drag)")
 @click.option("--isp", type=float, default=ISP, show_default=True, help="specific impulse, s")
+@click.option("--m-dry", "m_dry", type=float, default=M_DRY, show_default=True,
+              help="dry mass, kg: a case whose mass reaches it is out of propellant")
 @click.option("--dt", type=float, default=None, help="RK4 step, s (default 0.05)")
 @click.option("--eps", type=float, default=None, help="sliding band for t_s1/t_s2 (default 0.05)")
 @click.option("--t-max", type=float, default=T_MAX_DEFAULT, show_default=True)
@@ -182,7 +187,8 @@ def _print_cases(recs: list[dict[str, Any]], console: Console) -> None:
 def command(plant: str, gains_path: Path | None, law: str, dispersion: str | None,
             initial_states: Path | None, cases: int | None, seed: int, disturbance: str,
             dist_amplitude: float | None, thrust_max: float | None, limit: str, drag: str,
-            guidance_drag: str | None, isp: float, dt: float | None, eps: float | None,
+            guidance_drag: str | None, isp: float, m_dry: float, dt: float | None,
+            eps: float | None,
             t_max: float, land_r: float, land_v: float, reference: bool,
             workers: int | None, scheduler: str | None, fig6: bool, as_json: bool,
             out: Path | None) -> None:
@@ -228,7 +234,7 @@ def command(plant: str, gains_path: Path | None, law: str, dispersion: str | Non
         raise ParameterError("--thrust-max", thrust_max, "must be a finite number > 0 (N)")
     opts: dict[str, Any] = dict(law=law, disturbance=disturbance, dist_amplitude=dist_amplitude,
                                 thrust_limit=thrust_max, limit=limit, dt=dt, t_max=t_max,
-                                eps=eps, seed=seed, drag=drag, isp=isp,
+                                eps=eps, seed=seed, drag=drag, isp=isp, m_dry=m_dry,
                                 land_tol=(land_r, land_v), guidance_drag=guidance_drag)
     progress = len(r0) > 1000 and not as_json
     if reference:
@@ -255,7 +261,7 @@ def _write(out: Path, summ: dict[str, Any], recs: list[dict[str, Any]]) -> None:
     (out / "summary.json").write_text(json.dumps(summ, indent=1))
     (out / "cases.json").write_text(json.dumps(recs))
     cols = ["case", "landed", "landing_time", "fuel", "time_saturated", "min_altitude",
-            "ground_contact", "nonfinite", "eps"]
+            "ground_contact", "nonfinite", "fuel_exhausted", "eps"]
     vec = ["r0", "v0", "r_land", "v_land", "peak_thrust", "t_s1", "t_s2"]
     header = cols[:1] + ["m0"] + [f"{k}_{ax}" for k in vec for ax in "xyz"] + cols[1:]
     lines = [",".join(header)]

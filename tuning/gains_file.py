@@ -24,7 +24,7 @@ import numpy as np
 from theory.gains import Gains, gains_to_toml
 from theory.mars_bounds import axis_bounds
 from theory.parameters import AXES, M_DRY
-from tuning.design import SOLVER, Envelope, Request, TuneResult
+from tuning.design import REFINE_FACTORS, REFINE_RTOL, SOLVER, Envelope, Request, TuneResult
 
 VERSION_PACKAGES = ("lgw", "numpy", "cvxpy", "sympy", "clarabel", "numba", "scipy")
 
@@ -120,6 +120,11 @@ def certificate(res: TuneResult, req: Request, env: Envelope, command: str = "")
     if ev is not None:
         cert["worst_case"] = {
             "method": "sim.batch.simulate_batch: extreme states, compass search, Monte Carlo",
+            "dt": ev.dt,
+            "refinement": (f"cases over the limit at dt re-flown at dt/{REFINE_FACTORS[0]} and "
+                           f"dt/{REFINE_FACTORS[1]}; replaced where both agree within "
+                           f"{REFINE_RTOL:.0%} under the limit (tuning.design.refine_over_limit)"),
+            "spikes_removed": ev.spikes_removed,
             "states": res.search_counts,
             "peak_thrust_axis": [float(x) for x in ev.peak_axis],
             "peak_thrust_norm": ev.peak_norm,
