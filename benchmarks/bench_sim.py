@@ -4,6 +4,7 @@
     /work/venv/bin/python benchmarks/bench_sim.py --million       # + 1,000,000 Table II landings
     /work/venv/bin/python benchmarks/bench_sim.py --floor         # chattering floor vs dt
     /work/venv/bin/python benchmarks/bench_sim.py --dt-sweep      # accuracy, landing, speed vs dt
+    /work/venv/bin/python benchmarks/bench_sim.py --tol-sweep     # the same for dopri5 vs rtol
 
 Measures, on Table II cases (seed 000, corrected law, default gains, physical drag):
   (a) a per-case scipy solve_ivp loop (RK45, rtol = atol = 1e-8, landing event) written as a
@@ -12,11 +13,16 @@ Measures, on Table II cases (seed 000, corrected law, default gains, physical dr
       (RK45, rtol = atol = 1e-8, output grid every 0.01 s to 30 s);
   (c) sim.batch.simulate_batch (numba RK4, fixed dt), after a warm-up call (compile time is
       printed separately);
+  (c5) the same simulator with method="dopri5": adaptive Dormand-Prince 5(4), the method of
+      (a), with error control at rtol = atol = --tol (default sim.parameters.DOPRI_RTOL);
   (d) the same batched RK4 in plain numpy arrays (no numba, no events): what batching alone
       buys, to show whether numba pays;
 and prints cases/second, the ratios (c)/(a), (c)/(b), (c)/(d), and the accuracy of (c)
 against (a): landing time and landing position.  Each route is warmed up on one case first
 (lambdify / compile / first-call costs are not part of the per-case rate).
+
+--tol-sweep: for each tolerance, (c5)'s accuracy against (a) and against the tight LSODA
+reference (Table II, and Table III with the 50 kN limit), landed fraction, steps, cases/s.
 
 --dt-sweep: for each dt, (c)'s accuracy against (a) and against the tight LSODA reference
 (Table II, and Table III with the 50 kN limit), the fraction of Table II cases that meet the
@@ -36,6 +42,7 @@ from scipy.integrate import solve_ivp
 from sim.batch import simulate_batch
 from sim.campaign import table2_states
 from sim.mars import drag_accel, exhaust_velocity
+from sim.parameters import DOPRI_RTOL
 from theory.gains import default_gains
 from theory.mars_mss import law_numeric
 from theory.parameters import G_MARS, M0, R0, V0
@@ -120,9 +127,19 @@ def chatter_floor(g, dts=(0.01, 0.02, 0.05, 0.1, 0.2)) -> None:
               f"{0.85 * dt**1.5:12.2e}")
 
 
-def dt_sweep(g, dts=(0.05, 0.06, 0.07, 0.08, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5), n_acc: int = 20,
-             n_land: int = 4000) -> None:
-    """Accuracy and landing criterion against dt (see the module docstring)."""
+def _err(b, tl, rl) -> str:
+    """Max landing-time / landing-position difference of b against (tl, rl), and misses."""
+    both = b.landed & np.isfinite(tl)
+    dT = np.abs(b.landing_time - tl)[both]
+    dR = np.linalg.norm(b.r_land - rl, axis=1)[both]
+    miss = int(np.sum(b.landed != np.isfinite(tl)))
+    tag = f" ({miss} miss)" if miss else ""
+    return (f"{dT.max() if dT.size else np.nan:>9.1e}{tag:>12} "
+            f"{dR.max() if dR.size else np.nan:>8.1e}")
+
+
+def sweep(g, settings: list[tuple[str, dict]], n_acc: int = 20, n_land: int = 4000) -> None:
+    """Accuracy, landing criterion and speed for each (label, simulate_batch options)."""
     from sim.campaign import table3_states
     from sim.reference import simulate_reference
 
@@ -136,30 +153,31 @@ def dt_sweep(g, dts=(0.05, 0.06, 0.07, 0.08, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5), n_a
     ref3 = simulate_reference(*s3, g, thrust_limit=50e3)
     print(f"(a) {rate_a:.1f} cases/s ({n_acc} Table II cases): (c)/(a) = 1000 needs "
           f"{1000 * rate_a:.0f} cases/s")
-    print(f"{'dt s':>5} | {'Table II vs (a): dT s':>21} {'dr m':>8} | {'vs LSODA: dT s':>14} "
+    print(f"{'setting':>12} | {'Table II vs (a): dT s':>21} {'dr m':>8} | {'vs LSODA: dT s':>14} "
           f"{'dr m':>8} | {'Table III 50 kN: dT s':>21} {'dr m':>8} | {'landed':>13} | "
-          f"{'steps':>5} {'cases/s':>8}")
-
-    def err(b, tl, rl):
-        both = b.landed & np.isfinite(tl)
-        dT = np.abs(b.landing_time - tl)[both]
-        dR = np.linalg.norm(b.r_land - rl, axis=1)[both]
-        miss = int(np.sum(b.landed != np.isfinite(tl)))
-        tag = f" ({miss} miss)" if miss else ""
-        return (f"{dT.max() if dT.size else np.nan:>9.1e}{tag:>12} "
-                f"{dR.max() if dR.size else np.nan:>8.1e}")
-
-    for dt in dts:
-        simulate_batch(r0[:2], v0[:2], m0[:2], g, dt=dt)
+          f"{'steps':>5} {'cases/s':>8} {'x (a)':>6}")
+    for label, kw in settings:
+        simulate_batch(r0[:2], v0[:2], m0[:2], g, **kw)
         t = time.perf_counter()
-        b = simulate_batch(r0[:n_land], v0[:n_land], m0[:n_land], g, dt=dt)
+        b = simulate_batch(r0[:n_land], v0[:n_land], m0[:n_land], g, **kw)
         rate = n_land / (time.perf_counter() - t)
-        b3 = simulate_batch(*s3, g, dt=dt, thrust_limit=50e3)
-        steps = np.mean(b.t_end / dt)
-        print(f"{dt:5.2f} | {err(_head(b, n_acc), tl_a, rl_a):>30} | "
-              f"{err(_head(b, n_acc), ref2.landing_time, ref2.r_land):>23} | "
-              f"{err(b3, ref3.landing_time, ref3.r_land):>30} | "
-              f"{b.landed.sum():>6}/{n_land:<6} | {steps:5.0f} {rate:8.0f}")
+        b3 = simulate_batch(*s3, g, thrust_limit=50e3, **kw)
+        print(f"{label:>12} | {_err(_head(b, n_acc), tl_a, rl_a):>30} | "
+              f"{_err(_head(b, n_acc), ref2.landing_time, ref2.r_land):>23} | "
+              f"{_err(b3, ref3.landing_time, ref3.r_land):>30} | "
+              f"{b.landed.sum():>6}/{n_land:<6} | {b.steps.mean():5.0f} {rate:8.0f} "
+              f"{rate / rate_a:6.0f}")
+
+
+def dt_sweep(g, dts=(0.05, 0.06, 0.07, 0.08, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5)) -> None:
+    """RK4: accuracy and landing criterion against dt (see the module docstring)."""
+    sweep(g, [(f"rk4 dt {dt:g}", {"dt": dt}) for dt in dts])
+
+
+def tol_sweep(g, tols=(1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)) -> None:
+    """dopri5: accuracy and landing criterion against rtol = atol."""
+    sweep(g, [(f"dopri5 {tol:g}", {"method": "dopri5", "rtol": tol, "atol": tol})
+              for tol in tols])
 
 
 def _head(b, n: int):
@@ -169,7 +187,7 @@ def _head(b, n: int):
                            r_land=b.r_land[:n])
 
 
-def million(g, dt: float, n: int = 1_000_000, chunk: int = 100_000) -> None:
+def million(g, kw: dict, label: str, n: int = 1_000_000, chunk: int = 100_000) -> None:
     """Fly n Table II cases in chunks (seeded per chunk), keeping only the statistics."""
     from rich.progress import Progress
 
@@ -182,14 +200,14 @@ def million(g, dt: float, n: int = 1_000_000, chunk: int = 100_000) -> None:
         for k in range(0, n, chunk):
             m = min(chunk, n - k)
             r0, v0, m0 = table2_states(m, seed=1000 + k)
-            b = simulate_batch(r0, v0, m0, g, dt=dt, chunk=m)
+            b = simulate_batch(r0, v0, m0, g, chunk=m, **kw)
             landed += int(b.landed.sum())
             worst_err = max(worst_err, float(np.nanmax(np.linalg.norm(b.r_land, axis=1))))
             times.append(b.landing_time)
             bar.advance(task, m)
     el = time.perf_counter() - t0
     lt = np.concatenate(times)
-    print(f"(c) {n} Table II cases, dt = {dt} s: {el:.1f} s wall = {n / el:.0f} cases/s; "
+    print(f"{label}: {n} Table II cases: {el:.1f} s wall = {n / el:.0f} cases/s; "
           f"landed {landed}/{n}; landing time min/median/max {np.nanmin(lt):.2f}/"
           f"{np.nanmedian(lt):.2f}/{np.nanmax(lt):.2f} s; max landing error {worst_err:.3f} m")
     full = el * 1_000_000 / n
@@ -208,9 +226,13 @@ def main() -> None:
     ap.add_argument("--million", action="store_true", help="also fly 1,000,000 Table II cases")
     ap.add_argument("--million-n", type=int, default=1_000_000,
                     help="cases for --million (fewer: the 1e6 time is extrapolated, and said so)")
+    ap.add_argument("--million-method", choices=("rk4", "dopri5", "both"), default="both")
     ap.add_argument("--floor", action="store_true", help="only the chattering-floor table")
     ap.add_argument("--dt-sweep", action="store_true",
                     help="only the accuracy / landing / speed table against dt")
+    ap.add_argument("--tol", type=float, default=DOPRI_RTOL, help="rtol = atol of (c5)")
+    ap.add_argument("--tol-sweep", action="store_true",
+                    help="only the accuracy / landing / speed table of dopri5 against rtol")
     args = ap.parse_args()
     g = default_gains()
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} "
@@ -220,6 +242,9 @@ def main() -> None:
         return
     if args.dt_sweep:
         dt_sweep(g)
+        return
+    if args.tol_sweep:
+        tol_sweep(g)
         return
     r0, v0, m0 = table2_states(max(args.n_batch, args.n_ivp), seed=0)
 
@@ -231,6 +256,13 @@ def main() -> None:
     rate_c = args.n_batch / (time.perf_counter() - t)
     print(f"(c) batched numba RK4 dt={args.dt}: {args.n_batch} cases, {rate_c:.0f} cases/s "
           f"({b.landed.sum()} landed)")
+    kw5 = {"method": "dopri5", "rtol": args.tol, "atol": args.tol}
+    simulate_batch(r0[:2], v0[:2], m0[:2], g, **kw5)
+    t = time.perf_counter()
+    b5 = simulate_batch(r0[:args.n_batch], v0[:args.n_batch], m0[:args.n_batch], g, **kw5)
+    rate_5 = args.n_batch / (time.perf_counter() - t)
+    print(f"(c5) batched numba dopri5 rtol=atol={args.tol:g}: {args.n_batch} cases, "
+          f"{rate_5:.0f} cases/s ({b5.landed.sum()} landed, {b5.steps.mean():.0f} steps/case)")
 
     n = args.n_ivp
     user_solve_ivp(r0[:1], v0[:1], m0[:1], g)  # warm-up: lambdify, first calls
@@ -253,18 +285,24 @@ def main() -> None:
     print(f"(d) batched numpy RK4 (no numba, no events) dt={args.dt}: {args.n_numpy} cases, "
           f"{rate_d:.0f} cases/s")
 
-    dT = np.abs(b.landing_time[:n] - tl_a)
-    dR = np.linalg.norm(b.r_land[:n] - rl_a, axis=1)
-    print(f"ratios: (c)/(a) = {rate_c / rate_a:.0f}x, (c)/(b) = {rate_c / rate_b:.0f}x, "
+    print(f"ratios: (c)/(a) = {rate_c / rate_a:.0f}x, (c5)/(a) = {rate_5 / rate_a:.0f}x, "
+          f"(c)/(b) = {rate_c / rate_b:.0f}x, (c5)/(b) = {rate_5 / rate_b:.0f}x, "
           f"(c)/(d) numba vs numpy = {rate_c / rate_d:.1f}x")
-    print(f"accuracy of (c) vs (a) on {n} cases: max |dT_land| = {dT.max():.2e} s, "
-          f"max |dr_land| = {dR.max():.2e} m (targets 0.01 s, 0.01 m): "
-          f"{'OK' if dT.max() < 0.01 and dR.max() < 0.01 else 'FAIL'}")
-    print(f"target (c) >= 1000 x (a): {'OK' if rate_c >= 1000 * rate_a else 'FAIL'}; "
-          f"extrapolated 1e6 Table II landings: {1e6 / rate_c / 60:.1f} min "
-          "(extrapolated from the run above; --million measures it)")
+    for name, res, rate in (("(c)", b, rate_c), ("(c5)", b5, rate_5)):
+        dT = np.abs(res.landing_time[:n] - tl_a)
+        dR = np.linalg.norm(res.r_land[:n] - rl_a, axis=1)
+        acc_ok = dT.max() < 0.01 and dR.max() < 0.01
+        print(f"{name}: accuracy vs (a) on {n} cases: max |dT_land| = {dT.max():.2e} s, "
+              f"max |dr_land| = {dR.max():.2e} m (targets 0.01 s, 0.01 m): "
+              f"{'OK' if acc_ok else 'FAIL'}; >= 1000 x (a): "
+              f"{'OK' if rate >= 1000 * rate_a else 'FAIL'} ({rate / rate_a:.0f}x); "
+              f"1e6 Table II landings extrapolated {1e6 / rate / 60:.1f} min")
     if args.million:
-        million(g, args.dt, n=args.million_n)
+        for meth in (("rk4", "dopri5") if args.million_method == "both"
+                     else (args.million_method,)):
+            kw = {"dt": args.dt} if meth == "rk4" else kw5
+            million(g, kw, f"(c) RK4 dt = {args.dt} s" if meth == "rk4" else
+                    f"(c5) dopri5 rtol = atol = {args.tol:g}", n=args.million_n)
 
 
 

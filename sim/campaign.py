@@ -185,6 +185,8 @@ def summarize(res: BatchResult) -> dict[str, Any]:
         # the mass reached the dry mass before landing (sim.batch: the case stops there)
         "fuel_exhausted": int(np.sum(res.fuel_exhausted & ~res.landed)),
         "m_dry": res.info.get("m_dry", M_DRY),
+        # dopri5 only: the case needed more than max_steps attempts and stopped unfinished
+        "step_limit": int(res.step_limit.sum()),
         "landing_error_m": _stats(err),
         "landing_speed_mps": _stats(np.linalg.norm(res.v_land[ok], axis=1) if ok.any()
                                     else np.array([])),
@@ -192,6 +194,8 @@ def summarize(res: BatchResult) -> dict[str, Any]:
         "fuel_kg": _stats(res.fuel[ok]),
         "peak_thrust_N": {ax: _stats(res.peak_thrust[ok, i]) for i, ax in enumerate("xyz")},
         "time_saturated_s": _stats(res.time_saturated[ok]),
+        # over all cases, up to landing (negative: below ground, see ground_contact)
+        "min_altitude_m": _stats(res.min_altitude),
         "eps": res.eps, "dt": res.dt,
     }
     out["settings"] = {k: v for k, v in res.info.items()}
@@ -225,6 +229,7 @@ def case_records(res: BatchResult) -> list[dict[str, Any]]:
             "t_s1_last_exit": [_num(x) for x in res.t_s1_last_exit[i]],
             "t_s2_last_exit": [_num(x) for x in res.t_s2_last_exit[i]],
             "nonfinite": bool(res.nonfinite[i]), "fuel_exhausted": bool(res.fuel_exhausted[i]),
+            "step_limit": bool(res.step_limit[i]), "steps": int(res.steps[i]),
             "t_end": _num(res.t_end[i]),
             "eps": res.eps,
         })

@@ -91,7 +91,7 @@ def _nonfinite_row(rhs: ClosedLoopRHS, y0: np.ndarray, e: _NonFinite, eps: float
             "time_saturated": 0.0, "min_altitude": float(min(y0[2], e.y[2])),
             "ground_contact": bool(y0[2] < 0), "t_s1": tf[:3], "t_s2": tf[3:],
             "t_s1_last_exit": nan3, "t_s2_last_exit": nan3, "nonfinite": True,
-            "t_end": float(e.t), "y_end": e.y, "sol": None}
+            "t_end": float(e.t), "y_end": e.y, "steps": 0, "step_limit": False, "sol": None}
 
 
 def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
@@ -165,7 +165,7 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
             "time_saturated": float(np.sum(dts[sat])), "min_altitude": float(ys[2].min()),
             "ground_contact": ground, "t_s1": tf[:3], "t_s2": tf[3:], "t_s1_last_exit": tx[:3],
             "t_s2_last_exit": tx[3:], "nonfinite": bool(nonfinite), "t_end": t_end,
-            "y_end": y_end, "sol": sol}
+            "y_end": y_end, "steps": len(sol.t) - 1, "step_limit": False, "sol": sol}
 
 
 def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,

@@ -117,7 +117,29 @@ def test_cli_m_dry_stops_a_case_out_of_propellant() -> None:
     assert full["summary"]["fuel_exhausted"] == 0 and not full["cases"][0]["fuel_exhausted"]
 
 
+def test_cli_dopri5_agrees_with_rk4() -> None:
+    """--method dopri5 flies the same campaign as RK4 (landing times within 0.01 s, the same
+    cases landed), says which integrator it used, and takes far fewer steps."""
+    args = ["simulate", "mars", "--dispersion", "table2", "--cases", "20", "--json"]
+    rk = json.loads(_cli(args).output)
+    dp = json.loads(_cli([*args, "--method", "dopri5", "--rtol", "1e-6", "--atol", "1e-6"])
+                    .output)
+    assert dp["summary"]["settings"]["integrator"].startswith("Dormand-Prince 5(4)")
+    assert "rtol=1e-06" in dp["summary"]["settings"]["integrator"]
+    assert dp["summary"]["step_limit"] == 0 and dp["summary"]["landed"] == 20
+    t_rk = np.array([c["landing_time"] for c in rk["cases"]])
+    t_dp = np.array([c["landing_time"] for c in dp["cases"]])
+    np.testing.assert_allclose(t_dp, t_rk, atol=0.01)
+    assert max(c["steps"] for c in dp["cases"]) < min(c["steps"] for c in rk["cases"]) / 3
+    lim = json.loads(_cli(["simulate", "mars", "--json", "--method", "dopri5",
+                           "--max-step", "0.01", "--t-max", "30"]).output)
+    assert lim["cases"][0]["steps"] >= 2700  # 27 s of flight in steps of at most 0.01 s
+
+
 @pytest.mark.parametrize("args,name", [
+    (["--method", "rk45"], "--method"), (["--method", "dopri5", "--rtol", "0"], "rtol"),
+    (["--method", "dopri5", "--max-step", "-1"], "max_step"),
+    (["--method", "dopri5", "--reference"], "--method"),
     (["--m-dry", str(M0 + 1.0)], "m_dry"), (["--m-dry", "-1"], "m_dry"),
     (["--law", "pid"], "--law"), (["--dispersion", "table9"], "--dispersion"),
     (["--cases", "5"], "--cases"), (["--dispersion", "table2", "--cases", "0"], "cases"),

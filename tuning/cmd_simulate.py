@@ -26,7 +26,7 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
-from sim.batch import simulate_batch
+from sim.batch import METHODS, simulate_batch
 from sim.campaign import (
     case_records,
     read_states_csv,
@@ -38,7 +38,13 @@ from sim.campaign import (
 )
 from sim.disturbances import DISTURBANCES
 from sim.laws import LAWS
-from sim.parameters import DRAG_MODELS, T_MAX_DEFAULT
+from sim.parameters import (
+    DOPRI_ATOL,
+    DOPRI_MAX_STEP,
+    DOPRI_RTOL,
+    DRAG_MODELS,
+    T_MAX_DEFAULT,
+)
 from theory.errors import ParameterError
 from theory.gains import Gains
 from theory.mars_bounds import axis_bounds
@@ -107,8 +113,10 @@ def _print_fig6(out: dict[str, Any], console: Console) -> None:
 def _print_summary(summ: dict[str, Any], console: Console) -> None:
     t = Table(title=f"{summ['cases']} cases: {summ['landed']} landed, {summ['nonfinite']} "
                     f"non-finite, {summ['ground_contact']} ground contacts, "
-                    f"{summ['fuel_exhausted']} out of propellant (m_dry {summ['m_dry']:g} kg) "
-                    f"(eps = {summ['eps']}, dt = {summ['dt']} s)")
+                    f"{summ['fuel_exhausted']} out of propellant (m_dry {summ['m_dry']:g} kg)"
+                    + (f", {summ['step_limit']} stopped at the dopri5 step limit"
+                       if summ["step_limit"] else "")
+                    + f" (eps = {summ['eps']}; {summ['settings']['integrator']})")
     for c in ("quantity (landed cases)", "min", "median", "max"):
         t.add_column(c, justify="right")
     rows = [("landing error |r| m", summ["landing_error_m"]),
@@ -116,6 +124,7 @@ def _print_summary(summ: dict[str, Any], console: Console) -> None:
             ("landing time s", summ["landing_time_s"]), ("fuel kg", summ["fuel_kg"])]
     rows += [(f"peak thrust {ax} N", summ["peak_thrust_N"][ax]) for ax in "xyz"]
     rows.append(("time saturated s", summ["time_saturated_s"]))
+    rows.append(("min altitude m (all cases)", summ["min_altitude_m"]))
     for name, st in rows:
         t.add_row(name, _fmt(st["min"], ".4g"), _fmt(st["median"], ".4g"), _fmt(st["max"], ".4g"))
     console.print(t)
@@ -134,7 +143,8 @@ def _print_cases(recs: list[dict[str, Any]], console: Console) -> None:
         ts2 = [x for x in rec["t_s2"] if x is not None]
         flags = " ".join(f for f, on in (("NONFINITE", rec["nonfinite"]),
                                          ("GROUND", rec["ground_contact"]),
-                                         ("DRY", rec["fuel_exhausted"] and not rec["landed"]))
+                                         ("DRY", rec["fuel_exhausted"] and not rec["landed"]),
+                                         ("STEPLIMIT", rec["step_limit"]))
                          if on)
         peak = "/".join(_fmt(None if p is None else p / 1e3, ".1f") for p in rec["peak_thrust"])
         t.add_row(str(rec["case"]), "yes" if rec["landed"] else "NO",
@@ -170,7 +180,17 @@ def _print_cases(recs: list[dict[str, Any]], console: Console) -> None:
 @click.option("--isp", type=float, default=ISP, show_default=True, help="specific impulse, s")
 @click.option("--m-dry", "m_dry", type=float, default=M_DRY, show_default=True,
               help="dry mass, kg: a case whose mass reaches it is out of propellant")
-@click.option("--dt", type=float, default=None, help="RK4 step, s (default 0.05)")
+@click.option("--dt", type=float, default=None,
+              help="RK4 step, s (default 0.05); dopri5: the first step")
+@click.option("--method", default="rk4", show_default=True,
+              help="rk4 (fixed step) | dopri5 (adaptive Dormand-Prince 5(4), for landing "
+                   "statistics; peaks and saturation time are sampled at its steps)")
+@click.option("--rtol", type=float, default=DOPRI_RTOL, show_default=True,
+              help="dopri5 relative tolerance")
+@click.option("--atol", type=float, default=DOPRI_ATOL, show_default=True,
+              help="dopri5 absolute tolerance")
+@click.option("--max-step", type=float, default=DOPRI_MAX_STEP, show_default=True,
+              help="dopri5 largest step, s")
 @click.option("--eps", type=float, default=None, help="sliding band for t_s1/t_s2 (default 0.05)")
 @click.option("--t-max", type=float, default=T_MAX_DEFAULT, show_default=True)
 @click.option("--land-r", type=float, default=LAND_POS_TOL, show_default=True,
@@ -188,7 +208,7 @@ def command(plant: str, gains_path: Path | None, law: str, dispersion: str | Non
             initial_states: Path | None, cases: int | None, seed: int, disturbance: str,
             dist_amplitude: float | None, thrust_max: float | None, limit: str, drag: str,
             guidance_drag: str | None, isp: float, m_dry: float, dt: float | None,
-            eps: float | None,
+            method: str, rtol: float, atol: float, max_step: float, eps: float | None,
             t_max: float, land_r: float, land_v: float, reference: bool,
             workers: int | None, scheduler: str | None, fig6: bool, as_json: bool,
             out: Path | None) -> None:
@@ -198,6 +218,7 @@ def command(plant: str, gains_path: Path | None, law: str, dispersion: str | Non
     _choice("--law", law, list(LAWS))
     _choice("--disturbance", disturbance, DISTURBANCES)
     _choice("--limit", limit, ("axis", "norm"))
+    _choice("--method", method, METHODS)
     _choice("--drag", drag, DRAG_MODELS)
     if guidance_drag is not None:
         _choice("--guidance-drag", guidance_drag, DRAG_MODELS)
@@ -236,6 +257,11 @@ def command(plant: str, gains_path: Path | None, law: str, dispersion: str | Non
                                 thrust_limit=thrust_max, limit=limit, dt=dt, t_max=t_max,
                                 eps=eps, seed=seed, drag=drag, isp=isp, m_dry=m_dry,
                                 land_tol=(land_r, land_v), guidance_drag=guidance_drag)
+    if method != "rk4":
+        if reference:
+            raise ParameterError("--method", method, "cannot be combined with --reference "
+                                 "(the reference is solve_ivp LSODA)")
+        opts.update(method=method, rtol=rtol, atol=atol, max_step=max_step)
     progress = len(r0) > 1000 and not as_json
     if reference:
         from sim.reference import simulate_reference
@@ -261,7 +287,7 @@ def _write(out: Path, summ: dict[str, Any], recs: list[dict[str, Any]]) -> None:
     (out / "summary.json").write_text(json.dumps(summ, indent=1))
     (out / "cases.json").write_text(json.dumps(recs))
     cols = ["case", "landed", "landing_time", "fuel", "time_saturated", "min_altitude",
-            "ground_contact", "nonfinite", "fuel_exhausted", "eps"]
+            "ground_contact", "nonfinite", "fuel_exhausted", "step_limit", "steps", "eps"]
     vec = ["r0", "v0", "r_land", "v_land", "peak_thrust", "t_s1", "t_s2"]
     header = cols[:1] + ["m0"] + [f"{k}_{ax}" for k in vec for ax in "xyz"] + cols[1:]
     lines = [",".join(header)]
