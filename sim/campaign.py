@@ -211,10 +211,10 @@ def _num(x: float) -> float | None:
     return float(x) if np.isfinite(x) else None
 
 
-def case_records(res: BatchResult) -> list[dict[str, Any]]:
-    """One JSON-ready record per case (NaN -> null)."""
+def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]:
+    """One JSON-ready record per case (NaN -> null); the first ``n`` cases only if given."""
     recs = []
-    for i in range(len(res)):
+    for i in range(len(res) if n is None else min(n, len(res))):
         recs.append({
             "case": i, "r0": res.r0[i].tolist(), "v0": res.v0[i].tolist(),
             "m0": float(res.m0[i]), "landed": bool(res.landed[i]),
