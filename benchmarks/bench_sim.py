@@ -17,9 +17,10 @@ Measures, on Table II cases (seed 000, corrected law, default gains, physical dr
       (a), with error control at rtol = atol = --tol (default sim.parameters.DOPRI_RTOL);
   (d) the same batched RK4 in plain numpy arrays (no numba, no events): what batching alone
       buys, to show whether numba pays;
-and prints cases/second, the ratios (c)/(a), (c)/(b), (c)/(d), and the accuracy of (c)
-against (a): landing time and landing position.  Each route is warmed up on one case first
-(lambdify / compile / first-call costs are not part of the per-case rate).
+and prints cases/second, the ratios (c)/(a), (c5)/(a), (c)/(b), (c5)/(b), (c)/(d), and the
+accuracy of (c) and (c5) against (a): landing time and landing position.  Each route is
+warmed up on one case first (lambdify / compile / first-call costs are not part of the per-case
+rate).
 
 --tol-sweep: for each tolerance, (c5)'s accuracy against (a) and against the tight LSODA
 reference (Table II, and Table III with the 50 kN limit), landed fraction, steps, cases/s.
@@ -127,6 +128,15 @@ def chatter_floor(g, dts=(0.01, 0.02, 0.05, 0.1, 0.2)) -> None:
               f"{0.85 * dt**1.5:12.2e}")
 
 
+def _timed(g, r0, v0, m0, **kw):
+    """simulate_batch on the given cases after a 2-case warm-up (compile, first call): the
+    result and its rate in cases/s."""
+    simulate_batch(r0[:2], v0[:2], m0[:2], g, **kw)
+    t = time.perf_counter()
+    res = simulate_batch(r0, v0, m0, g, **kw)
+    return res, len(r0) / (time.perf_counter() - t)
+
+
 def _err(b, tl, rl) -> str:
     """Max landing-time / landing-position difference of b against (tl, rl), and misses."""
     both = b.landed & np.isfinite(tl)
@@ -157,10 +167,7 @@ def sweep(g, settings: list[tuple[str, dict]], n_acc: int = 20, n_land: int = 40
           f"{'dr m':>8} | {'Table III 50 kN: dT s':>21} {'dr m':>8} | {'landed':>13} | "
           f"{'steps':>5} {'cases/s':>8} {'x (a)':>6}")
     for label, kw in settings:
-        simulate_batch(r0[:2], v0[:2], m0[:2], g, **kw)
-        t = time.perf_counter()
-        b = simulate_batch(r0[:n_land], v0[:n_land], m0[:n_land], g, **kw)
-        rate = n_land / (time.perf_counter() - t)
+        b, rate = _timed(g, r0[:n_land], v0[:n_land], m0[:n_land], **kw)
         b3 = simulate_batch(*s3, g, thrust_limit=50e3, **kw)
         print(f"{label:>12} | {_err(_head(b, n_acc), tl_a, rl_a):>30} | "
               f"{_err(_head(b, n_acc), ref2.landing_time, ref2.r_land):>23} | "
@@ -257,10 +264,7 @@ def main() -> None:
     print(f"(c) batched numba RK4 dt={args.dt}: {args.n_batch} cases, {rate_c:.0f} cases/s "
           f"({b.landed.sum()} landed)")
     kw5 = {"method": "dopri5", "rtol": args.tol, "atol": args.tol}
-    simulate_batch(r0[:2], v0[:2], m0[:2], g, **kw5)
-    t = time.perf_counter()
-    b5 = simulate_batch(r0[:args.n_batch], v0[:args.n_batch], m0[:args.n_batch], g, **kw5)
-    rate_5 = args.n_batch / (time.perf_counter() - t)
+    b5, rate_5 = _timed(g, r0[:args.n_batch], v0[:args.n_batch], m0[:args.n_batch], **kw5)
     print(f"(c5) batched numba dopri5 rtol=atol={args.tol:g}: {args.n_batch} cases, "
           f"{rate_5:.0f} cases/s ({b5.landed.sum()} landed, {b5.steps.mean():.0f} steps/case)")
 

@@ -51,8 +51,9 @@ EPS_DEFAULT = 0.05  # m for s1, m/s for s2
 # have not seen, at ~15 % more steps than 1e-4 (46 against 39 per Table II case).
 DOPRI_RTOL = 1e-5
 DOPRI_ATOL = 1e-5
-# max step: events and metrics (peak thrust, ground contact, min altitude, the s bands) are
-# sampled at the accepted nodes, so the step is capped to keep them meaningful.
+# max step: peak thrust, saturation time and the s-band times are sampled at the accepted
+# nodes (landing, dry mass and min altitude use the Hermite interpolants), so the step is
+# capped to keep those samples meaningful.
 DOPRI_MAX_STEP = 1.0  # s
 # attempted steps per case before the case is flagged ``step_limit`` (e.g. an axis chattering
 # at s = 0 with stop="t_max", where the error control shrinks the step without end)
