@@ -98,6 +98,23 @@ def test_ground_contact_is_not_an_integration_artifact() -> None:
     assert rk.min_altitude[0] < 0 and rk.min_altitude[0] > -1e-3
 
 
+def test_min_altitude_between_nodes() -> None:
+    """A dive below ground and back (r0 = 10 m, v0 = -15 m/s straight down, 50 kN): the lowest
+    point lies between RK4 nodes.  min_altitude must be the minimum of the steps' Hermite
+    interpolants rebuilt here from the recorded nodes (r_z and its derivative v_z), and lower
+    than the lowest node."""
+    r0, v0, m0 = np.array([[0.0, 0.0, 10.0]]), np.array([[0.0, 0.0, -15.0]]), [1900.0]
+    dt = 0.1
+    b = simulate_batch(r0, v0, m0, G, dt=dt, record=True, thrust_limit=50e3)
+    tr = b.trajectory
+    z, vz = tr["r"][0, :, 2], tr["v"][0, :, 2]
+    k = int(np.searchsorted(tr["t"], b.landing_time[0]))  # nodes up to the landing step
+    lowest = min(_herm_min(z[i], vz[i], z[i + 1], vz[i + 1], dt, 1.0) for i in range(k - 1))
+    assert b.ground_contact[0]
+    assert b.min_altitude[0] == pytest.approx(lowest, abs=1e-12)
+    assert z[:k].min() - b.min_altitude[0] > 1e-4
+
+
 @settings(max_examples=200, deadline=None)
 @given(p=st.lists(st.floats(-10, 10), min_size=4, max_size=4),
        h=st.floats(0.01, 2.0), b=st.floats(0.0, 1.0))
