@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sim.batch import _herm, _herm_min, simulate_batch
+from sim.batch import DP_A, DP_B, DP_C, DP_E, _herm, _herm_min, simulate_batch
 from sim.campaign import summarize, table2_states, table3_states
 from sim.reference import simulate_reference
 from theory.errors import ParameterError
@@ -27,6 +27,30 @@ def _dev(b, r) -> tuple[float, float, float]:
     return (float(np.max(np.abs(b.landing_time - r.landing_time)[ok])),
             float(np.max(np.linalg.norm(b.r_land - r.r_land, axis=1)[ok])),
             float(np.max(np.abs(b.fuel - r.fuel)[ok])))
+
+
+def test_tableau_order_conditions() -> None:
+    """Structure before numbers: the Dormand-Prince tableau satisfies the row-sum condition and
+    the order conditions up to order 5 for B and 4 for the embedded B* = B - E (Hairer, Norsett
+    & Wanner I, II.2).  The adaptive results alone would not show a wrong coefficient: the error
+    control shrinks the step until they are accurate again."""
+    A = np.zeros((7, 7))
+    A[:6, :6] = DP_A
+    A[6, :] = DP_B  # FSAL: the 7th stage is the new node
+    c = DP_C
+    np.testing.assert_allclose(A.sum(axis=1), c, atol=1e-14)
+    cond = [  # (weights -> value): sum b, b.c, b.c^2, b.A.c, b.c^3, b.(c*A.c), b.A.c^2, b.A.A.c
+        (lambda b: b.sum(), 1.0), (lambda b: b @ c, 1 / 2), (lambda b: b @ c**2, 1 / 3),
+        (lambda b: b @ A @ c, 1 / 6), (lambda b: b @ c**3, 1 / 4),
+        (lambda b: b @ (c * (A @ c)), 1 / 8), (lambda b: b @ A @ c**2, 1 / 12),
+        (lambda b: b @ A @ A @ c, 1 / 24)]
+    five = [(lambda b: b @ c**4, 1 / 5), (lambda b: b @ A @ A @ A @ c, 1 / 120),
+            (lambda b: b @ (c**2 * (A @ c)), 1 / 10), (lambda b: b @ A @ c**3, 1 / 20)]
+    for f, v in cond + five:
+        assert f(DP_B) == pytest.approx(v, abs=1e-14)
+    for f, v in cond:
+        assert f(DP_B - DP_E) == pytest.approx(v, abs=1e-14)
+    assert abs(DP_E.sum()) < 1e-15
 
 
 def test_table1_and_random_cases_match_reference() -> None:
@@ -50,6 +74,17 @@ def test_limited_table3_cases_match_reference() -> None:
     dT, dR, dF = _dev(b, r)
     assert dT < 1e-3 and dR < 1e-3 and dF < 0.05
     assert np.all(b.peak_thrust <= 50e3 + 1e-6)
+
+
+def test_disturbed_cases_match_reference() -> None:
+    """Time-dependent right-hand sides (sin t, random sines) exercise the stage times."""
+    r0, v0, m0 = table2_states(2, seed=5)
+    for dist in ("sin", "random"):
+        kw = {"disturbance": dist, "dist_amplitude": 0.5, "land_tol": (0.5, 0.5), "seed": 3}
+        b = simulate_batch(r0, v0, m0, G, **kw, **DOPRI)
+        r = simulate_reference(r0, v0, m0, G, **kw)
+        dT, dR, dF = _dev(b, r)
+        assert dT < 1e-3 and dR < 1e-3 and dF < 0.01, (dist, dT, dR, dF)
 
 
 def test_error_falls_with_the_tolerance() -> None:
