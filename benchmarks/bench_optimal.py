@@ -1,4 +1,4 @@
-"""Solve time of the fuel-optimal SOCP (sim.optimal), Table I case, per-axis 50 kN limit.
+"""Solve time of the fuel-optimal SOCP (lgw.sim.mars.optimal), Table I case, per-axis 50 kN limit.
 
     /work/venv/bin/python benchmarks/bench_optimal.py [--repeats 5]
 
@@ -15,8 +15,8 @@ import argparse
 import statistics
 import time
 
-from sim.optimal import min_time, solve_fuel_optimal
-from theory.parameters import M0, R0, V0
+from lgw.sim.mars.optimal import min_time, solve_fuel_optimal
+from lgw.theory.mars.parameters import M0, R0, V0
 
 
 def main() -> None:

@@ -8,13 +8,13 @@
 
 Measures, on Table II cases (seed 000, corrected law, default gains, physical drag):
   (a) a per-case scipy solve_ivp loop (RK45, rtol = atol = 1e-8, landing event) written as a
-      user would: numpy RHS calling theory.mars_mss.law_numeric;
-  (b) python-control: input_output_response of sim.interop.closed_loop_nlsys per case
+      user would: numpy RHS calling lgw.theory.mars.mss.law_numeric;
+  (b) python-control: input_output_response of lgw.sim.mars.interop.closed_loop_nlsys per case
       (RK45, rtol = atol = 1e-8, output grid every 0.01 s to 30 s);
-  (c) sim.batch.simulate_batch (numba RK4, fixed dt), after a warm-up call (compile time is
+  (c) lgw.sim.mars.batch.simulate_batch (numba RK4, fixed dt), after a warm-up call (compile time is
       printed separately);
   (c5) the same simulator with method="dopri5": adaptive Dormand-Prince 5(4), the method of
-      (a), with error control at rtol = atol = --tol (default sim.parameters.DOPRI_RTOL);
+      (a), with error control at rtol = atol = --tol (default lgw.sim.mars.parameters.DOPRI_RTOL);
   (d) the same batched RK4 in plain numpy arrays (no numba, no events): what batching alone
       buys, to show whether numba pays;
 and prints cases/second, the ratios (c)/(a), (c5)/(a), (c)/(b), (c5)/(b), (c)/(d), and the
@@ -38,15 +38,14 @@ import os
 import time
 
 import numpy as np
+from lgw.sim.mars.batch import simulate_batch
+from lgw.sim.mars.campaign import table2_states
+from lgw.sim.mars.parameters import DOPRI_RTOL
+from lgw.sim.mars.plant import drag_accel, exhaust_velocity
+from lgw.theory.mars.gains import default_gains
+from lgw.theory.mars.mss import law_numeric
+from lgw.theory.mars.parameters import G_MARS, M0, R0, V0
 from scipy.integrate import solve_ivp
-
-from sim.batch import simulate_batch
-from sim.campaign import table2_states
-from sim.mars import drag_accel, exhaust_velocity
-from sim.parameters import DOPRI_RTOL
-from theory.gains import default_gains
-from theory.mars_mss import law_numeric
-from theory.parameters import G_MARS, M0, R0, V0
 
 
 def user_solve_ivp(r0, v0, m0, g, t_max=60.0):
@@ -77,8 +76,7 @@ def user_solve_ivp(r0, v0, m0, g, t_max=60.0):
 def python_control(r0, v0, m0, g):
     """(b): python-control per case."""
     import control
-
-    from sim.interop import closed_loop_nlsys
+    from lgw.sim.mars.interop import closed_loop_nlsys
 
     sys = closed_loop_nlsys(g)
     T = np.arange(0.0, 30.0 + 1e-9, 0.01)
@@ -113,7 +111,7 @@ def numpy_batch(r0, v0, m0, g, dt=0.05, t_end=28.0):
 
 def chatter_floor(g, dts=(0.01, 0.02, 0.05, 0.1, 0.2)) -> None:
     """Max |s1|, |s2| over t in [90, 120] s on Table I with stop="t_max" (the RK4 floor)."""
-    from theory.mars_mss import surfaces_numeric
+    from lgw.theory.mars.mss import surfaces_numeric
 
     s2f = surfaces_numeric()[1]
     print("chattering floor (Table I, corrected law, max over t in [90, 120] s):")
@@ -150,8 +148,8 @@ def _err(b, tl, rl) -> str:
 
 def sweep(g, settings: list[tuple[str, dict]], n_acc: int = 20, n_land: int = 4000) -> None:
     """Accuracy, landing criterion and speed for each (label, simulate_batch options)."""
-    from sim.campaign import table3_states
-    from sim.reference import simulate_reference
+    from lgw.sim.mars.campaign import table3_states
+    from lgw.sim.mars.reference import simulate_reference
 
     r0, v0, m0 = table2_states(max(n_acc, n_land), seed=0)
     user_solve_ivp(r0[:1], v0[:1], m0[:1], g)  # warm-up

@@ -8,7 +8,8 @@
                                                campaigns with another seed than the tuner's
   python benchmarks/bench_tune.py all
 
-Every number printed comes from ``tuning.design`` and ``sim.batch.simulate_batch``; nothing is
+Every number printed comes from ``lgw.tuning.mars.design`` and
+``lgw.sim.mars.batch.simulate_batch``; nothing is
 cached between runs.  The first simulation compiles the numba kernel (~15 s, reported apart).
 """
 
@@ -20,10 +21,9 @@ import time
 from dataclasses import replace
 
 import numpy as np
-
-from sim.campaign import table2_states, table3_states
-from theory.mars_bounds import axis_bounds
-from tuning.design import (
+from lgw.sim.mars.campaign import table2_states, table3_states
+from lgw.theory.mars.bounds import axis_bounds
+from lgw.tuning.mars.design import (
     Request,
     check_campaign,
     envelope_from_name,
@@ -44,7 +44,7 @@ TARGETS = [  # (tf s, thrust N, limit, envelope)
 def _warm() -> float:
     t = time.perf_counter()
     env = envelope_from_name("table3")
-    from theory.gains import default_gains
+    from lgw.theory.mars.gains import default_gains
 
     evaluate(env.extreme_states(5e4, "axis")[:2], default_gains(), Request(60.0, 5e4))
     return time.perf_counter() - t

@@ -1,4 +1,4 @@
-"""How the default gain set (theory.parameters.DEFAULT_GAINS) was chosen.
+"""How the default gain set (lgw.theory.mars.parameters.DEFAULT_GAINS) was chosen.
 
 Random search: 12,000 gain sets (log-uniform gains, uniform exponents) fly the Table I case
 together with the corrected law, no drag, semi-implicit Euler at dt = 0.01 s (a screening
@@ -11,13 +11,12 @@ Printed: the 10 kept sets with the smallest sound landing-time bound (T1* + T2*)
 
 from __future__ import annotations
 
+import lgw.theory.mars.parameters as P
 import numpy as np
+from lgw.theory.mars.bounds import landing_time_bound
+from lgw.theory.mars.gains import default_gains, gains_from_dict
+from lgw.theory.mars.mss import law_numeric
 from scipy.integrate import solve_ivp
-
-import theory.parameters as P
-from theory.gains import default_gains, gains_from_dict
-from theory.mars_bounds import landing_time_bound
-from theory.mars_mss import law_numeric
 
 
 def screen(n: int = 12_000, seed: int = 1) -> list[tuple]:

@@ -1,15 +1,10 @@
-"""Floor 2 of the workbench: simulation of seed 000's closed loop.
+"""lgw.sim, floor 2: integrators, generated laws, plants, campaigns and executors.
 
-``sim`` may import ``theory``; it never imports ``tuning``.  Modules:
-
-* ``sim.parameters``  sim-only constants (Martian atmosphere, drag coefficient, integrator
-  defaults), each with its source or reasoning;
-* ``sim.mars``        the plant, seed 000 (10)-(14), and the drag models (12);
-* ``sim.laws``        the registry of guidance laws, compiled from the SymPy expressions of
-  ``theory`` (numba);
-* ``sim.disturbances`` the lumped disturbance a_p: none, A sin t (47), bounded random, worst case;
-* ``sim.batch``       the batched fixed-step simulator (``simulate_batch``, ``BatchResult``);
-* ``sim.reference``   the tight solve_ivp reference (``simulate_reference``);
-* ``sim.campaign``    Table II / III dispersions, CSV states, local and dask executors;
-* ``sim.interop``     the closed loop as a python-control ``nlsys``.
+May import ``lgw.theory``; never ``lgw.tuning`` (tests/test_layering.py).  Shared machinery at
+this root; one subpackage per system: ``mars`` (seed 000: plant, laws generated from
+``lgw.theory.mars``, batched RK4 / dopri5, reference mode, campaigns, SOCP baseline),
+``lunar`` (seed 001), ``eros`` (seed 002).
 """
+
+if __name__ != "lgw.sim":  # the folder sim/ is installed as lgw.sim only
+    raise ImportError(f"this folder is the package lgw.sim: import lgw.sim, not {__name__}")

@@ -7,11 +7,10 @@ import pytest
 import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
+from lgw.theory import settling
+from lgw.theory import settling_proofs as SP
+from lgw.theory.errors import ParameterError
 from scipy import integrate
-
-from theory import settling
-from theory import settling_proofs as SP
-from theory.errors import ParameterError
 
 pos = st.floats(1e-3, 1e3)
 p_st = st.floats(0.05, 0.95)

@@ -9,9 +9,9 @@ Two bounds for the same inequality:
   m_p = (1 - k p)/(g - p), m_g = (k g - 1)/(g - p)   (Aldana-Lopez, Gomez-Gutierrez et al.,
   IJRNC 2019).  It is attained by V' = -(a V^p + b V^g)^k as V(0) -> infinity.
 * The exact time from a given V0, T(V0) = int_0^V0 dV/(a V^p + b V^g)^k, which is a regularised
-  incomplete Beta function (derived in ``theory.settling_proofs``).
+  incomplete Beta function (derived in ``lgw.theory.settling_proofs``).
 
-The symbolic forms used by the proofs live in ``theory.settling_proofs``; the functions here are
+The symbolic forms used by the proofs live in ``lgw.theory.settling_proofs``; the functions here are
 the one numeric implementation that the CLI, reports, tuner and tests call, and a test checks
 them against the symbolic forms and against quadrature.
 """
@@ -19,10 +19,9 @@ them against the symbolic forms and against quadrature.
 from __future__ import annotations
 
 import numpy as np
+from lgw.theory.errors import ParameterError
 from numpy.typing import ArrayLike
 from scipy import special
-
-from theory.errors import ParameterError
 
 
 def _check(a: ArrayLike, b: ArrayLike, p: float, g: float, k: float) -> None:

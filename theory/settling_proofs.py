@@ -10,8 +10,7 @@ from __future__ import annotations
 from functools import cache
 
 import sympy as sp
-
-from theory.claims import Claim, Step, combine, prove_nonneg, prove_zero
+from lgw.theory.claims import Claim, Step, combine, prove_nonneg, prove_zero
 
 V, V0, t, u = sp.symbols("V V_0 t u", positive=True)
 a, b, k, eta = sp.symbols("a b k eta", positive=True)

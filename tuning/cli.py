@@ -1,31 +1,100 @@
-"""The ``lgw`` command line.
+"""The ``lgw`` command line: ``lgw VERB SYSTEM [OPTIONS]``.
 
-Each subcommand lives in a module ``tuning/cmd_<name>.py`` that defines ``command`` (a click
-command); this file gathers them and turns every invalid parameter into one clear message and
-exit code 2, without a traceback and without writing anything.
+Each system package ``lgw.tuning.<system>`` registers the verbs it implements in its
+``COMMANDS`` mapping (verb -> one-line help) and defines each as a click command named after the
+system in its module ``cmd_<verb>``.  This shell reads the mappings without importing the
+command modules (so ``lgw --help`` and argument errors answer at once, before SymPy, numba or
+cvxpy load) and imports one module only when its command runs.  Every invalid parameter becomes
+one line ``error: ...`` and exit code 2, without a traceback and without writing anything.
 """
 
 from __future__ import annotations
 
 import importlib
-import pkgutil
 import sys
 
 import click
+from lgw import SYSTEMS
+from lgw.theory.errors import ParameterError
 
-import tuning
-from theory.errors import ParameterError
+VERBS = {
+    "bounds": "Settling-time, neighbourhood and landing-time bounds for a gain set.",
+    "simulate": "Fly the closed loop: one case, a Monte Carlo campaign or a states file.",
+    "verify": "Property campaign: observed behaviour against every proven bound.",
+    "tune": "Design gains for a target time and an actuator limit, with a certificate.",
+    "report": "Derive and judge every claim of the paper; write the report.",
+    "optimal": "Offline fuel-optimal baseline (lossless convexification).",
+    "compare": "The paper's comparison of laws on its own scenario.",
+}
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+def system_commands(system: str) -> dict[str, str]:
+    """verb -> help of the verbs ``system`` implements (its package's ``COMMANDS``)."""
+    try:
+        mod = importlib.import_module(f"lgw.tuning.{system}")
+    except ModuleNotFoundError:
+        return {}
+    return dict(getattr(mod, "COMMANDS", {}))
+
+
+def systems_for(verb: str) -> list[str]:
+    return [s for s in SYSTEMS if verb in system_commands(s)]
+
+
+class VerbGroup(click.Group):
+    """``lgw VERB``: one subcommand per system that implements VERB, imported on use."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return systems_for(self.name)
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        if name not in systems_for(self.name):
+            return None
+        mod = importlib.import_module(f"lgw.tuning.{name}.cmd_{self.name}")
+        return mod.command
+
+    def resolve_command(self, ctx: click.Context, args: list[str]):
+        name = args[0] if args else ""
+        if name.startswith("-") or name in systems_for(self.name):
+            return super().resolve_command(ctx, args)
+        valid = systems_for(self.name)
+        other = [s for s in SYSTEMS if s not in valid]
+        hint = f"{', '.join(other)}: not implemented for {self.name}" if other and \
+            name in other else ""
+        raise ParameterError("SYSTEM", name, f"lgw {self.name} takes one of "
+                             f"{', '.join(valid)}", hint)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        rows = [(s, system_commands(s)[self.name]) for s in self.list_commands(ctx)]
+        if rows:
+            with formatter.section("Systems"):
+                formatter.write_dl(rows)
+
+
+class Root(click.Group):
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        rows = []
+        for verb, text in VERBS.items():
+            systems = systems_for(verb)
+            if systems:
+                rows.append((verb, f"{text} [{', '.join(systems)}]"))
+        with formatter.section("Commands (lgw VERB SYSTEM --help for each)"):
+            formatter.write_dl(rows)
+        with formatter.section("Systems"):
+            formatter.write_dl([("mars", "seed 000, Mars powered descent (fixed-time MSS)"),
+                                ("lunar", "seed 001, lunar descent (adaptive backstepping)"),
+                                ("eros", "seed 002, 433 Eros landing (fuzzy FTSMC)")])
+
+
+@click.group(cls=Root, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="lgw")
 def cli() -> None:
     """Landing-guidance workbench: derive, check, simulate and tune Lyapunov guidance laws."""
 
 
-for _mod in sorted(m.name for m in pkgutil.iter_modules(tuning.__path__)):
-    if _mod.startswith("cmd_"):
-        cli.add_command(importlib.import_module(f"tuning.{_mod}").command)
+for _verb, _help in VERBS.items():
+    cli.add_command(VerbGroup(_verb, help=_help,
+                              context_settings={"help_option_names": ["-h", "--help"]}))
 
 
 def main() -> None:

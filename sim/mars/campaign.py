@@ -1,0 +1,235 @@
+"""Campaigns of seed 000: Table II dispersions, Table III envelope, CSV states; executors.
+
+Initial states:
+  ``table2_states(n, seed)``  seed 000 Table II: normal, mean Table I state (r, v, m0),
+                              standard deviations 100 m, 10 m/s, 20 kg per component;
+  ``table3_states(n, seed)``  seed 000 Table III: uniform in the box r in [-1000, 200] x
+                              [0, 2000] x [1000, 1500] m, v in [-15, 45] x [-100, 0] x [-75, 0]
+                              m/s; mass = Table I m0 (Table III gives no mass);
+  ``read_states_csv(path)``   explicit states, columns rx, ry, rz, vx, vy, vz, m.
+Executors (``run_campaign``): local in-process (numba threads over cases), or dask.distributed
+on a cluster (``scheduler`` address) or a local cluster (``workers``).  Cases are cut into
+chunks of a fixed size that does not depend on the number of workers, every case is
+integrated independently, and a random disturbance is drawn from the case's own
+SeedSequence(seed).spawn child, so the results are identical whatever the executor layout.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from lgw.sim.mars.batch import BatchResult, simulate_batch
+from lgw.theory.errors import ParameterError
+from lgw.theory.mars.gains import Gains
+from lgw.theory.mars.parameters import M0, M_DRY, R0, V0
+
+TABLE2_STD_R = np.array([100.0, 100.0, 100.0])  # m, seed 000 Table II
+TABLE2_STD_V = np.array([10.0, 10.0, 10.0])  # m/s, seed 000 Table II
+TABLE2_STD_M = 20.0  # kg, seed 000 Table II
+TABLE3_R_MIN = np.array([-1000.0, 0.0, 1000.0])  # m, seed 000 Table III
+TABLE3_R_MAX = np.array([200.0, 2000.0, 1500.0])
+TABLE3_V_MIN = np.array([-15.0, -100.0, -75.0])  # m/s, seed 000 Table III
+TABLE3_V_MAX = np.array([45.0, 0.0, 0.0])
+CSV_COLUMNS = ("rx", "ry", "rz", "vx", "vy", "vz", "m")
+DEFAULT_CHUNK = 2048
+
+States = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+def _check_n(n: int) -> int:
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
+        raise ParameterError("cases", n, "must be an integer >= 1")
+    return int(n)
+
+
+def table2_states(n: int = 300, seed: int = 0) -> States:
+    """Seed 000 Table II: (r0 (n,3), v0 (n,3), m0 (n,)) normal about the Table I state."""
+    n = _check_n(n)
+    rng = np.random.default_rng(seed)
+    r0 = R0 + TABLE2_STD_R * rng.standard_normal((n, 3))
+    v0 = V0 + TABLE2_STD_V * rng.standard_normal((n, 3))
+    m0 = M0 + TABLE2_STD_M * rng.standard_normal(n)
+    return r0, v0, m0
+
+
+def table3_states(n: int = 50, seed: int = 0) -> States:
+    """Seed 000 Table III: r0, v0 uniform in the printed box, m0 = Table I m0."""
+    n = _check_n(n)
+    rng = np.random.default_rng(seed)
+    r0 = rng.uniform(TABLE3_R_MIN, TABLE3_R_MAX, (n, 3))
+    v0 = rng.uniform(TABLE3_V_MIN, TABLE3_V_MAX, (n, 3))
+    return r0, v0, np.full(n, M0)
+
+
+def table1_state() -> States:
+    return R0[None].copy(), V0[None].copy(), np.array([M0])
+
+
+def read_states_csv(path: str | Path) -> States:
+    """Read explicit initial states: a header with columns rx, ry, rz, vx, vy, vz, m (any order,
+    extra columns ignored), one case per row; SI units."""
+    p = Path(path)
+    try:
+        text = p.read_text()
+    except OSError as e:
+        raise ParameterError("--initial-states", str(p), f"cannot be read ({e.strerror})") from e
+    rows = list(csv.DictReader(text.splitlines()))
+    header = rows[0].keys() if rows else (csv.reader(text.splitlines()).__next__()
+                                          if text.strip() else [])
+    missing = [c for c in CSV_COLUMNS if c not in [h.strip() for h in header]]
+    if missing:
+        raise ParameterError("--initial-states", str(p),
+                             f"needs columns {', '.join(CSV_COLUMNS)}; "
+                             f"missing {', '.join(missing)}")
+    if not rows:
+        raise ParameterError("--initial-states", str(p), "has no data rows")
+    data = np.empty((len(rows), 7))
+    for i, row in enumerate(rows):
+        row = {k.strip(): v for k, v in row.items() if k is not None}
+        for j, c in enumerate(CSV_COLUMNS):
+            try:
+                data[i, j] = float(row[c])
+            except (TypeError, ValueError) as e:
+                raise ParameterError(f"--initial-states row {i + 2} column {c}", row[c],
+                                     "must be a number") from e
+            if not math.isfinite(data[i, j]):
+                raise ParameterError(f"--initial-states row {i + 2} column {c}", row[c],
+                                     "must be finite")
+        if data[i, 6] <= 0:
+            raise ParameterError(f"--initial-states row {i + 2} column m", data[i, 6],
+                                 "must be > 0 (kg)")
+    return data[:, :3], data[:, 3:6], data[:, 6]
+
+
+def chunk_slices(n: int, chunk: int = DEFAULT_CHUNK) -> list[slice]:
+    """Deterministic chunking: depends on n and chunk only, never on the worker count."""
+    if chunk < 1:
+        raise ParameterError("chunk", chunk, "must be >= 1")
+    return [slice(a, min(a + chunk, n)) for a in range(0, n, chunk)]
+
+
+def _run_chunk(r0, v0, m0, gains, start: int, opts: dict[str, Any]) -> BatchResult:
+    # One chunk on one worker thread; case_offset keeps the per-case disturbance seeds global.
+    return simulate_batch(r0, v0, m0, gains, case_offset=start, parallel=False, **opts)
+
+
+def run_campaign(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
+                 executor: str = "local", workers: int | None = None,
+                 scheduler: str | None = None, processes: bool = True,
+                 chunk: int = DEFAULT_CHUNK, progress: bool = False,
+                 **opts: Any) -> BatchResult:
+    """Run a campaign with ``lgw.sim.mars.batch.simulate_batch`` options ``opts``.
+
+    executor="local": in-process, numba threads over cases.
+    executor="dask": ``scheduler`` (address of a running dask scheduler) or a LocalCluster
+      with ``workers`` single-threaded workers (``processes=False`` keeps them in-process).
+    """
+    if executor == "local":
+        return simulate_batch(r0, v0, m0, gains, progress=progress, chunk=chunk, **opts)
+    if executor != "dask":
+        raise ParameterError("executor", executor, "must be 'local' or 'dask'")
+    if workers is not None and (not isinstance(workers, int) or workers < 1):
+        raise ParameterError("--workers", workers, "must be an integer >= 1")
+    from dask.distributed import Client, LocalCluster
+    from dask.distributed import progress as dask_progress
+
+    r0 = np.atleast_2d(np.asarray(r0, float))
+    v0 = np.atleast_2d(np.asarray(v0, float))
+    m0 = np.broadcast_to(np.asarray(m0, float), (r0.shape[0],)).copy()
+    slices = chunk_slices(r0.shape[0], chunk)
+    cluster = None
+    if scheduler is None:
+        cluster = LocalCluster(n_workers=workers or 1, threads_per_worker=1,
+                               processes=processes, dashboard_address=None)
+        client = Client(cluster)
+    else:
+        client = Client(scheduler)
+    try:
+        futs = [client.submit(_run_chunk, r0[sl], v0[sl], m0[sl], gains, sl.start, opts,
+                              pure=False) for sl in slices]
+        if progress:
+            dask_progress(futs)
+        parts = client.gather(futs)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    res = BatchResult.concat(parts)
+    res.info["executor"] = f"dask ({scheduler or f'LocalCluster, {workers or 1} workers'})"
+    return res
+
+
+# --- summaries ------------------------------------------------------------------------------
+
+def _stats(x: np.ndarray) -> dict[str, float | None]:
+    x = np.asarray(x, float)
+    x = x[np.isfinite(x)]
+    if x.size == 0:
+        return {"min": None, "median": None, "max": None}
+    return {"min": float(x.min()), "median": float(np.median(x)), "max": float(x.max())}
+
+
+def summarize(res: BatchResult) -> dict[str, Any]:
+    """Min / median / max over landed cases, and the counts, with eps and dt."""
+    ok = res.landed & ~res.nonfinite
+    err = np.linalg.norm(res.r_land[ok], axis=1) if ok.any() else np.array([])
+    out: dict[str, Any] = {
+        "cases": len(res), "landed": int(res.landed.sum()),
+        "not_landed": int((~res.landed).sum()), "nonfinite": int(res.nonfinite.sum()),
+        "ground_contact": int(res.ground_contact.sum()),
+        # the mass reached the dry mass before landing (lgw.sim.mars.batch: the case stops there)
+        "fuel_exhausted": int(np.sum(res.fuel_exhausted & ~res.landed)),
+        "m_dry": res.info.get("m_dry", M_DRY),
+        # dopri5 only: the case needed more than max_steps attempts and stopped unfinished
+        "step_limit": int(res.step_limit.sum()),
+        "landing_error_m": _stats(err),
+        "landing_speed_mps": _stats(np.linalg.norm(res.v_land[ok], axis=1) if ok.any()
+                                    else np.array([])),
+        "landing_time_s": _stats(res.landing_time[ok]),
+        "fuel_kg": _stats(res.fuel[ok]),
+        "peak_thrust_N": {ax: _stats(res.peak_thrust[ok, i]) for i, ax in enumerate("xyz")},
+        "time_saturated_s": _stats(res.time_saturated[ok]),
+        # over all cases, up to landing (negative: below ground, see ground_contact)
+        "min_altitude_m": _stats(res.min_altitude),
+        "eps": res.eps, "dt": res.dt,
+    }
+    out["settings"] = {k: v for k, v in res.info.items()}
+    if res.nonfinite.any():
+        idx = np.flatnonzero(res.nonfinite)
+        out["nonfinite_cases"] = [{"case": int(i), "r0": res.r0[i].tolist(),
+                                   "v0": res.v0[i].tolist(), "m0": float(res.m0[i]),
+                                   "t_end": float(res.t_end[i])} for i in idx]
+    return out
+
+
+def _num(x: float) -> float | None:
+    return float(x) if np.isfinite(x) else None
+
+
+def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]:
+    """One JSON-ready record per case (NaN -> null); the first ``n`` cases only if given."""
+    recs = []
+    for i in range(len(res) if n is None else min(n, len(res))):
+        recs.append({
+            "case": i, "r0": res.r0[i].tolist(), "v0": res.v0[i].tolist(),
+            "m0": float(res.m0[i]), "landed": bool(res.landed[i]),
+            "landing_time": _num(res.landing_time[i]),
+            "r_land": [_num(x) for x in res.r_land[i]], "v_land": [_num(x) for x in res.v_land[i]],
+            "fuel": _num(res.fuel[i]), "peak_thrust": [_num(x) for x in res.peak_thrust[i]],
+            "peak_thrust_unsat": [_num(x) for x in res.peak_thrust_unsat[i]],
+            "time_saturated": _num(res.time_saturated[i]),
+            "min_altitude": _num(res.min_altitude[i]),
+            "ground_contact": bool(res.ground_contact[i]),
+            "t_s1": [_num(x) for x in res.t_s1[i]], "t_s2": [_num(x) for x in res.t_s2[i]],
+            "t_s1_last_exit": [_num(x) for x in res.t_s1_last_exit[i]],
+            "t_s2_last_exit": [_num(x) for x in res.t_s2_last_exit[i]],
+            "nonfinite": bool(res.nonfinite[i]), "fuel_exhausted": bool(res.fuel_exhausted[i]),
+            "step_limit": bool(res.step_limit[i]), "steps": int(res.steps[i]),
+            "t_end": _num(res.t_end[i]),
+            "eps": res.eps,
+        })
+    return recs

@@ -1,0 +1,238 @@
+"""The tight reference: each case integrated by scipy's solve_ivp, for cross-checks.
+
+Independent of ``lgw.sim.mars.batch`` on purpose: the law is ``theory``'s own numpy lambdification
+(``lgw.sim.mars.laws.numpy_law``), the plant is ``lgw.sim.mars.plant.plant_rhs`` (numpy), landing
+and band
+crossings are solve_ivp events located by root finding on the dense output, and the
+thrust metrics are sampled on a fine grid of the dense output.  Same options and the same
+``BatchResult`` as ``simulate_batch``; slow (seconds per case).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from lgw.sim.mars.batch import BatchResult, _check_states, check_m_dry, check_options
+from lgw.sim.mars.disturbances import DisturbanceSpec, make_disturbance
+from lgw.sim.mars.laws import get_law, numpy_law
+from lgw.sim.mars.plant import drag_accel, plant_rhs, saturate
+from lgw.theory.errors import ParameterError
+from lgw.theory.mars.gains import Gains
+from lgw.theory.mars.mss import surfaces_numeric
+from lgw.theory.mars.parameters import G_MARS, ISP, M_DRY
+from scipy.integrate import solve_ivp
+
+REF_RTOL = 1e-10
+REF_ATOL = 1e-10
+REF_MAX_STEP = 0.1  # s; bounds the gap in which a band event could be missed
+METRIC_GRID = 1e-3  # s, sampling of peak thrust, saturation time and altitude
+
+
+class ClosedLoopRHS:
+    """The closed loop of one case as a numpy function f(t, y) -> y' (also used by interop)."""
+
+    def __init__(self, gains: Gains, *, law: str = "corrected", dist: DisturbanceSpec,
+                 case: int = 0, thrust_limit: float | None = None, limit: str = "axis",
+                 drag: str = "physical", guidance_drag: str | None = None,
+                 isp: float = ISP) -> None:
+        self.P = get_law(law).param_values(gains)
+        self.law = numpy_law(law)
+        self.s2 = surfaces_numeric()[1]
+        self.g = gains
+        self.dist = dist
+        self.case = case
+        self.thrust_limit = thrust_limit
+        self.limit = limit
+        self.drag = drag
+        self.gdrag = drag if guidance_drag is None else guidance_drag
+        self.isp = isp
+
+    def s2_of(self, y: np.ndarray) -> np.ndarray:
+        g = self.g
+        return self.s2(y[:3], y[3:6], g.beta1, g.beta2, g.q1, g.q2)
+
+    def force(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(F after the limit, F before) commanded at state y (7,), or at states y (..., 7)."""
+        y = np.asarray(y, float)
+        r, v, m = y[..., :3], y[..., 3:6], y[..., 6]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            a = self.law(r, v, G_MARS, drag_accel(r, v, m, self.gdrag), m, self.P)
+        fu = np.asarray(m, float)[..., None] * np.asarray(a, float)
+        return saturate(fu, self.thrust_limit, self.limit), fu
+
+    def __call__(self, t: float, y: np.ndarray, ap_extra: np.ndarray | None = None
+                 ) -> np.ndarray:
+        f, _ = self.force(y)
+        ap = self.dist.accel(t, self.s2_of(y) if self.dist.kind == "worst" else None, self.case)
+        if ap_extra is not None:
+            ap = ap + ap_extra
+        return plant_rhs(t, y, f, drag=self.drag, isp=self.isp, disturbance_accel=ap)
+
+
+class _NonFinite(Exception):  # noqa: N818  (control flow, not an error)
+    """The closed-loop derivative is not finite at (t, y): the command is +-inf or NaN."""
+
+    def __init__(self, t: float, y: np.ndarray) -> None:
+        super().__init__(t)
+        self.t = t
+        self.y = y
+
+
+def _nonfinite_row(rhs: ClosedLoopRHS, y0: np.ndarray, e: _NonFinite, eps: float,
+                   landed0: bool) -> dict:
+    """What is known when the derivative became non-finite: the state there and the t = 0
+    band entries (solve_ivp cannot return a partial solution; see ``simulate_reference``)."""
+    s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
+    tf = np.where(np.abs(s0) <= eps, 0.0, np.nan)
+    nan3 = np.full(3, np.nan)
+    return {"landed": landed0, "landing_time": 0.0 if landed0 else np.nan,
+            "r_land": y0[:3] if landed0 else nan3, "v_land": y0[3:6] if landed0 else nan3,
+            "fuel": y0[6] - e.y[6], "fuel_exhausted": False,
+            "peak_thrust": np.zeros(3), "peak_thrust_unsat": np.zeros(3),
+            "time_saturated": 0.0, "min_altitude": float(min(y0[2], e.y[2])),
+            "ground_contact": bool(y0[2] < 0), "t_s1": tf[:3], "t_s2": tf[3:],
+            "t_s1_last_exit": nan3, "t_s2_last_exit": nan3, "nonfinite": True,
+            "t_end": float(e.t), "y_end": e.y, "steps": 0, "step_limit": False, "sol": None}
+
+
+def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
+         land_tol: tuple[float, float], stop: str, rtol: float, atol: float, max_step: float,
+         method: str, m_dry: float) -> dict:
+    tr, tv = land_tol
+
+    def f(t, y):
+        dy = rhs(t, y)
+        if not np.all(np.isfinite(dy)):
+            # LSODA would retry the step forever at a non-finite derivative (measured: millions
+            # of evaluations at the same t); the batch flags the case, so does the reference.
+            raise _NonFinite(float(t), np.array(y, float))
+        return dy
+
+    def landing(t, y):
+        return max(np.linalg.norm(y[:3]) / tr, np.linalg.norm(y[3:6]) / tv) - 1.0
+    landing.terminal = stop == "landing"
+    landing.direction = -1
+
+    def band(j: int, direction: int):
+        def e(t, y):
+            s = y[j] if j < 3 else rhs.s2_of(y)[j - 3]
+            return abs(s) - eps
+        e.direction = direction
+        return e
+
+    def dry(t, y):
+        return y[6] - m_dry
+    dry.terminal = stop == "landing"  # as in simulate_batch: "t_max" integrates past it
+    dry.direction = -1
+
+    events = ([landing] + [band(j, -1) for j in range(6)] + [band(j, 1) for j in range(6)]
+              + [dry])
+    landed0 = bool(landing(0.0, y0) <= 0)
+    try:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sol = solve_ivp(f, (0.0, t_max), y0, method=method, rtol=rtol, atol=atol,
+                            max_step=max_step, events=events, dense_output=True)
+    except _NonFinite as e:
+        return _nonfinite_row(rhs, y0, e, eps, landed0)
+    s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
+    t_dry = sol.t_events[13][0] if len(sol.t_events[13]) else np.inf
+    tl = 0.0 if landed0 else (sol.t_events[0][0] if len(sol.t_events[0]) else np.nan)
+    if not tl <= t_dry:  # ran dry first: not landed
+        tl = np.nan
+    tf = np.array([0.0 if abs(s0[j]) <= eps else
+                   (sol.t_events[1 + j][0] if len(sol.t_events[1 + j]) else np.nan)
+                   for j in range(6)])
+    tx = np.array([sol.t_events[7 + j][-1] if len(sol.t_events[7 + j]) else np.nan
+                   for j in range(6)])
+    exhausted = bool(np.isfinite(t_dry))
+    nonfinite = not np.all(np.isfinite(sol.y)) or sol.status == -1
+    t_end = float(sol.t[-1])
+    t_metric = min(t_end, t_dry) if np.isnan(tl) else tl
+    grid = np.union1d(np.arange(0.0, t_metric, METRIC_GRID), sol.t[sol.t <= t_metric])
+    ys = sol.sol(grid)
+    f_sat, f_uns = rhs.force(ys.T)  # (K, 3) each
+    sat = np.any(f_sat != f_uns, axis=1)
+    dts = np.diff(np.append(grid, t_metric))
+    y_land = sol.sol(tl) if np.isfinite(tl) else np.full(7, np.nan)
+    y_end = sol.y[:, -1]
+    ground = bool(np.any(ys[2] < 0))
+    return {"landed": bool(np.isfinite(tl)), "landing_time": tl, "r_land": y_land[:3],
+            "v_land": y_land[3:6],
+            "fuel": y0[6] - (y_land[6] if np.isfinite(tl) else
+                             sol.sol(t_dry)[6] if exhausted else y_end[6]),
+            "fuel_exhausted": exhausted,
+            "peak_thrust": np.max(np.abs(f_sat), axis=0),
+            "peak_thrust_unsat": np.max(np.abs(f_uns), axis=0),
+            "time_saturated": float(np.sum(dts[sat])), "min_altitude": float(ys[2].min()),
+            "ground_contact": ground, "t_s1": tf[:3], "t_s2": tf[3:], "t_s1_last_exit": tx[:3],
+            "t_s2_last_exit": tx[3:], "nonfinite": bool(nonfinite), "t_end": t_end,
+            "y_end": y_end, "steps": len(sol.t) - 1, "step_limit": False, "sol": sol}
+
+
+def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
+                       law: str = "corrected", disturbance: str = "none",
+                       dist_amplitude: float | np.ndarray | None = None,
+                       thrust_limit: float | None = None, limit: str = "axis",
+                       dt: float | None = None, t_max: float = 120.0,
+                       eps: float | None = None, seed: int = 0, drag: str = "physical",
+                       isp: float = ISP, land_tol: tuple[float, float] = (0.1, 0.1),
+                       record: bool = False, progress: bool = False,
+                       guidance_drag: str | None = None, stop: str = "landing",
+                       case_offset: int = 0, dist_spec: DisturbanceSpec | None = None,
+                       rtol: float = REF_RTOL, atol: float = REF_ATOL,
+                       max_step: float = REF_MAX_STEP, method: str = "LSODA",
+                       m_dry: float = M_DRY) -> BatchResult:
+    """Per-case solve_ivp (LSODA, rtol = atol = 1e-10, max_step 0.1 s by default) with the
+    options of ``lgw.sim.mars.batch.simulate_batch``.  LSODA because the corrected law's damping
+    term
+    beta1 q1 |s1|^(q1-1) v grows without bound as s1 -> 0: once an axis sits at s1 ~ 0 while
+    another is still flying, the problem is stiff and explicit DOP853 crawls (minutes per case);
+    LSODA switches to BDF there and agrees with Radau to 1e-8 s in landing time.
+    ``dt`` is accepted for signature compatibility and ignored; record=True keeps each case's
+    OdeSolution in ``trajectory["sol"]`` (None for a non-finite case).
+
+    Non-finite derivative (the command is +-inf: s1 = 0 exactly with v != 0 and no thrust
+    limit): the case stops there, flagged ``nonfinite`` like in ``simulate_batch``, with
+    ``t_end``/``y_end`` the point of that evaluation; solve_ivp returns no partial solution, so
+    only the t = 0 band entries are kept.  In practice only an initial state reaches it (an
+    adaptive step landing on s1 = 0 exactly is a measure-zero event).  An axis exactly at
+    r = v = 0 is not singular: ``lgw.sim.mars.laws.numpy_law`` evaluates the limit there.
+    Dry mass ``m_dry``: an event, terminal with stop="landing", as in ``simulate_batch``
+    (``fuel_exhausted``; a case that runs dry first is not landed)."""
+    del dt
+    r0, v0, m0 = _check_states(r0, v0, m0)
+    m_dry = check_m_dry(m_dry, m0)
+    _, eps = check_options(law=law, disturbance=disturbance, thrust_limit=thrust_limit,
+                           limit=limit, dt=None, t_max=t_max, eps=eps, drag=drag,
+                           guidance_drag=guidance_drag, isp=isp, land_tol=land_tol, stop=stop)
+    if disturbance == "worst":
+        # -a_max sgn(s2) switches on s2 = 0, where the closed loop slides (a Filippov system);
+        # an adaptive solver crawls there with ever smaller steps.  Not a reference.
+        raise ParameterError("disturbance", disturbance, "the reference mode supports none, sin "
+                             "and random; 'worst' (sign feedback) only in simulate_batch")
+    n = r0.shape[0]
+    if dist_spec is None:
+        dist_spec = make_disturbance(disturbance, n, amplitude=dist_amplitude, seed=seed,
+                                     case_offset=case_offset)
+    rows = []
+    it = range(n)
+    if progress and n > 1:
+        from rich.console import Console
+        from rich.progress import track
+        it = track(it, description=f"reference, {n} cases", console=Console(stderr=True),
+                   transient=True)
+    for i in it:
+        rhs = ClosedLoopRHS(gains, law=law, dist=dist_spec, case=i, thrust_limit=thrust_limit,
+                            limit=limit, drag=drag, guidance_drag=guidance_drag, isp=isp)
+        y0 = np.concatenate([r0[i], v0[i], [m0[i]]])
+        rows.append(_one(rhs, y0, t_max=t_max, eps=eps, land_tol=land_tol, stop=stop,
+                         rtol=rtol, atol=atol, max_step=max_step, method=method,
+                         m_dry=m_dry))
+    keys = [k for k in rows[0] if k != "sol"]
+    out = {k: np.array([row[k] for row in rows]) for k in keys}
+    info = {"law": law, "disturbance": disturbance, "thrust_limit": thrust_limit,
+            "limit": limit if thrust_limit is not None else None, "drag": drag, "m_dry": m_dry,
+            "integrator": f"solve_ivp {method} rtol={rtol} atol={atol} max_step={max_step}",
+            "boundary_layer": None}
+    traj = {"sol": [row["sol"] for row in rows]} if record else None
+    return BatchResult(eps=eps, dt=float("nan"), r0=r0, v0=v0, m0=m0, trajectory=traj,
+                       info=info, **out)
