@@ -16,7 +16,6 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-
 from lgw.tuning.cli import cli
 
 GOLDEN = Path(__file__).parent / "golden"
