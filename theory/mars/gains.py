@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -90,8 +90,8 @@ class Gains:
         return out
 
     def with_disturbance(self, d: Disturbance | None) -> Gains:
-        return Gains(self.beta1, self.beta2, self.alpha1, self.alpha2, self.q1, self.q2,
-                     self.g1, self.g2, d)
+        """The same gain set (``extra`` tables included) with disturbance ``d``."""
+        return replace(self, disturbance=d)
 
 
 def _number(name: str, value: Any) -> float:

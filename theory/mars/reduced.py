@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 from lgw.theory.mars.mss import law_numeric, surfaces_numeric
+from lgw.theory.symbolic import np_sig
 from scipy.integrate import solve_ivp
 
 GAIN_ORDER = ("beta1", "beta2", "alpha1", "alpha2", "q1", "q2", "g1", "g2")
@@ -33,10 +34,6 @@ def trajectory(law: str, gains: dict[str, float], r0: float, v0: float, t_end: f
     b = (gains["beta1"], gains["beta2"], gains["q1"], gains["q2"])
     return {"t": sol.t, "r": sol.y[0], "v": sol.y[1], "s1": s1f(sol.y[0], sol.y[1], *b),
             "s2": s2f(sol.y[0], sol.y[1], *b)}
-
-
-def _sig(x, q):
-    return np.sign(x) * np.abs(x) ** q
 
 
 def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: float,
@@ -67,7 +64,7 @@ def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: flo
     def phase1(t, y):
         x1, w2 = y
         z2 = sgn2 * abs(w2) ** (1 / (1 - g1))
-        d1 = z2 - b1 * _sig(x1, q1) - b2 * _sig(x1, q2)
+        d1 = z2 - b1 * np_sig(x1, q1) - b2 * np_sig(x1, q2)
         dw = (1 - g1) * (-a1 * sgn2 - a2 * sgn2 * abs(z2) ** (g2 - g1))
         if law == "printed" and x1 != 0.0:
             dw += (1 - g1) * (b1 * q1 * abs(x1) ** (q1 - 1) + b2 * q2 * abs(x1) ** (q2 - 1)) * w2
@@ -89,7 +86,7 @@ def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: flo
     s2_0 = 0.0 if abs(s2_0) < floor else s2_0
     t0, x1 = 0.0, s1_0
     if s2_0 != 0.0:
-        sol = solve_ivp(phase1, (0.0, t_end), [s1_0, _sig(s2_0, 1 - g1)], method="LSODA",
+        sol = solve_ivp(phase1, (0.0, t_end), [s1_0, np_sig(s2_0, 1 - g1)], method="LSODA",
                         dense_output=True, rtol=1e-11, atol=1e-12, max_step=t_end / 500,
                         events=hit(1))
         if sol.status < 0:
@@ -98,17 +95,17 @@ def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: flo
         m = ts <= t0
         if m.any():
             y = sol.sol(ts[m])
-            s1[m], s2[m] = y[0], _sig(y[1], 1 / (1 - g1))
+            s1[m], s2[m] = y[0], np_sig(y[1], 1 / (1 - g1))
         x1 = float(sol.y[0, -1])
     if t0 < t_end and x1 != 0.0:
         sgn1 = float(np.sign(x1))
-        sol = solve_ivp(phase2, (t0, t_end), [_sig(x1, 1 - q1)], method="LSODA",
+        sol = solve_ivp(phase2, (t0, t_end), [np_sig(x1, 1 - q1)], method="LSODA",
                         dense_output=True, rtol=1e-11, atol=1e-14, max_step=t_end / 500,
                         events=hit(0))
         if sol.status < 0:
             raise RuntimeError(f"reference integration failed: {sol.message}")
         m = (ts >= t0) & (ts <= sol.t[-1])
         if m.any():
-            s1[m] = _sig(sol.sol(ts[m])[0], 1 / (1 - q1))
-    v = s2 - b1 * _sig(s1, q1) - b2 * _sig(s1, q2)
+            s1[m] = np_sig(sol.sol(ts[m])[0], 1 / (1 - q1))
+    v = s2 - b1 * np_sig(s1, q1) - b2 * np_sig(s1, q2)
     return {"t": ts, "s1": s1, "s2": s2, "r": s1, "v": v}

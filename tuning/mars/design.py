@@ -50,7 +50,7 @@ from typing import Any
 import cvxpy as cp
 import numpy as np
 from lgw.sim.mars import campaign
-from lgw.sim.mars.parameters import DT_DEFAULT
+from lgw.sim.mars.parameters import CD_LANDER, DT_DEFAULT, RHO0_MARS
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.bounds import axis_bounds, tf_min
 from lgw.theory.mars.gains import Disturbance, Gains
@@ -92,14 +92,8 @@ GROUND_TOL = LAND_POS_TOL
 # converges under the limit (dt/4 and dt/16 within REFINE_RTOL) was a fixed-step spike.
 REFINE_FACTORS = (4, 16)
 REFINE_RTOL = 0.02
-# Post-arrival chatter spikes of the singular term can be kept below this fraction of the
-# available acceleration by the GP's chatter rule (see build_gp).  Off (None) by default:
-# on Table III it forces q1 -> 0.75 and b1 down, and the initial command at |r_x| = d_keep,
-# v_x = 45 m/s away then exceeds 50 kN at every tf tried (docs/tuning.md).
-CHATTER_FRACTION: float | None = None
-# Physical drag bound used only in the proxy (lgw.sim.mars.parameters: rho0 = 0.020 kg/m^3, C_D =
-# 1.2).
-_RHO_CD = 0.020 * 1.2
+# Physical drag bound used only in the proxy: surface density times drag coefficient.
+_RHO_CD = RHO0_MARS * CD_LANDER
 
 
 # --- envelopes ----------------------------------------------------------------------------
@@ -225,10 +219,9 @@ class Envelope:
         forced = self.in_keep_out(x[:, :3], x[:, 3:6], thrust_max, limit, kappa=1.0)
         return float(k.mean()), float(forced.mean())
 
-    def axis_ranges(self, thrust_max: float, limit: str) -> dict[str, np.ndarray]:
+    def axis_ranges(self) -> dict[str, np.ndarray]:
         """Per axis, over all boxes: R (max |r|), U (max |v|), d_lo (least |r| of E),
         u_toward (max speed toward the target), u_away (max speed away)."""
-        del thrust_max, limit
         rs = [_box_ranges(lo, hi, self.keep_out) for lo, hi in self.boxes]
         out = {k: np.max([r[k] for r in rs], axis=0) for k in ("R", "U", "u_toward", "u_away")}
         out["d_lo"] = np.min([r["d_lo"] for r in rs], axis=0)
@@ -454,7 +447,7 @@ def build_gp(exps: Exponents, req: Request, env: Envelope,
     """The DGP for fixed exponents (see the module docstring).  ``branch`` = (j, k) picks which
     monomial of the min in (39) (k: alpha_k) and (31) (j: beta_j) meets the neighborhood."""
     exps.check()
-    rng = env.axis_ranges(req.thrust_max, req.limit)
+    rng = env.axis_ranges()
     v: dict[str, Any] = {k: cp.Variable(3, pos=True, name=k)
                          for k in ("b1", "b2", "a1", "a2", "t")}
     cons = []
@@ -479,15 +472,6 @@ def build_gp(exps: Exponents, req: Request, env: Envelope,
             c_a = np.sqrt(2 * env.brake_fraction * max(a_b[i], 1e-9)) * d_lo ** (0.5 - exps.q1)
             c_b = float(rng["u_toward"][i]) * d_lo ** (-exps.q1)
             cons.append(min(c_a, c_b) / b1 <= 1)
-        # Chatter rule (heuristic, checked by simulation): after an axis arrives, fixed-step
-        # integration leaves |s1| ~ r_c = (dt b1)^(1/(1-q1)) and, over N = tf/dt steps, spikes
-        # of the singular term up to about q1 b1 r_c^q1 N^(1-q1)/dt; keep them below
-        # CHATTER_FRACTION of the available acceleration (a monomial constraint on b1).
-        if CHATTER_FRACTION is not None:
-            dt = DT_DEFAULT
-            spike = (exps.q1 * b1 ** (1 / (1 - exps.q1)) * dt ** (exps.q1 / (1 - exps.q1) - 1)
-                     * (req.tf / dt) ** (1 - exps.q1))
-            cons.append(spike / (CHATTER_FRACTION * req.thrust_max / env.m_max) <= 1)
         if d is not None:
             j, k = branch if branch is not None else (0, 0)
             ak, ek = (a1, exps.g1) if k == 0 else (a2, exps.g2)
@@ -1032,11 +1016,6 @@ def nearest_feasible_tf(req: Request, env: Envelope, *, sim: SimFn | None = None
         if tf_ok > tf_hi:
             break
     return None, None
-
-
-def bounds_table(g: Gains) -> dict[str, dict[str, float]]:
-    """Every bound of ``lgw.theory.mars.bounds.axis_bounds`` (the one implementation)."""
-    return axis_bounds(g)
 
 
 @dataclass
