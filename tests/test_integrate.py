@@ -61,18 +61,15 @@ sys_finish = numba.njit(sys_finish, inline="always")
 
 
 @pytest.fixture(scope="module")
-def kernels(tmp_path_factory):
-    """The serial kernels for state sizes 2 and 3, generated into a temporary cache."""
-    d = tmp_path_factory.mktemp("lgw-cache")
-    mp = pytest.MonkeyPatch()
-    mp.setenv(kernel_cache.ENV_VAR, str(d))
+def kernels():
+    """The kernels for state sizes 2 and 3, generated into the kernel cache (keyed by their
+    source, so a second session loads the machine code instead of compiling)."""
     out = {}
     for ny in (2, 3):
         src = integrate.kernel_module_source("", HOOKS, {"NY": ny, "NX": 1, "NS": 1})
         out[ny] = kernel_cache.load_module(f"test_linear_{ny}_{kernel_cache.key([src])}",
                                            lambda src=src: src)
-    yield out
-    mp.undo()
+    return out
 
 
 def _run(mod, y0, A, *, level=0.0, stop=True, t_max=3.0, chunk=1000, parallel=False, **opt):
