@@ -5,6 +5,7 @@
     /work/venv/bin/python benchmarks/bench_sim.py --floor         # chattering floor vs dt
     /work/venv/bin/python benchmarks/bench_sim.py --dt-sweep      # accuracy, landing, speed vs dt
     /work/venv/bin/python benchmarks/bench_sim.py --tol-sweep     # the same for dopri5 vs rtol
+    /work/venv/bin/python benchmarks/bench_sim.py --before f010322   # kernel now vs at a commit
 
 Measures, on Table II cases (seed 000, corrected law, default gains, physical drag):
   (a) a per-case scipy solve_ivp loop (RK45, rtol = atol = 1e-8, landing event) written as a
@@ -24,6 +25,11 @@ rate).
 
 --tol-sweep: for each tolerance, (c5)'s accuracy against (a) and against the tight LSODA
 reference (Table II, and Table III with the 50 kN limit), landed fraction, steps, cases/s.
+
+--before COMMIT: the batch simulator of that commit (its sim/mars/batch.py, loaded from git into
+this process; it runs the same generated law) against the current one on the same Table II
+cases, RK4 and dopri5, best of --repeat runs each, interleaved: cases/s of both, the ratio
+now/before, and whether the per-case results are bitwise equal.
 
 --dt-sweep: for each dt, (c)'s accuracy against (a) and against the tight LSODA reference
 (Table II, and Table III with the 50 kN limit), the fraction of Table II cases that meet the
@@ -221,9 +227,59 @@ def million(g, kw: dict, label: str, n: int = 1_000_000, chunk: int = 100_000) -
           f"{'under' if full < 600 else 'OVER'} the 10-minute target")
 
 
+def load_before(commit: str):
+    """simulate_batch of sim/mars/batch.py at ``commit``, imported from a temporary file."""
+    import importlib.util
+    import subprocess
+    import tempfile
+    from pathlib import Path
+
+    repo = Path(__file__).resolve().parents[1]
+    src = subprocess.run(["git", "show", f"{commit}:sim/mars/batch.py"], cwd=repo,
+                         capture_output=True, text=True, check=True).stdout
+    path = Path(tempfile.mkdtemp(prefix="lgw-before-")) / "batch_before.py"
+    path.write_text(src)
+    spec = importlib.util.spec_from_file_location("batch_before", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.simulate_batch
+
+
+def before_after(g, commit: str, n: int, repeat: int) -> None:
+    old = load_before(commit)
+    r0, v0, m0 = table2_states(n, seed=0)
+    for method in ("rk4", "dopri5"):
+        t = time.perf_counter()
+        old(r0[:2], v0[:2], m0[:2], g, method=method)
+        t_old_c = time.perf_counter() - t
+        t = time.perf_counter()
+        simulate_batch(r0[:2], v0[:2], m0[:2], g, method=method)
+        t_new_c = time.perf_counter() - t
+        best = {"before": np.inf, "now": np.inf}
+        res = {}
+        for _ in range(repeat):
+            for label, fn in (("before", old), ("now", simulate_batch)):
+                t = time.perf_counter()
+                res[label] = fn(r0, v0, m0, g, method=method)
+                best[label] = min(best[label], time.perf_counter() - t)
+        same = all(np.array_equal(getattr(res["before"], k), getattr(res["now"], k),
+                                  equal_nan=True) for k in ("landed", "landing_time", "r_land",
+                                                            "v_land", "fuel", "peak_thrust",
+                                                            "time_saturated", "min_altitude",
+                                                            "t_s1", "t_s2", "t_end", "y_end",
+                                                            "steps"))
+        print(f"{method}: {n} Table II cases, best of {repeat}: before ({commit}) "
+              f"{n / best['before']:.0f} cases/s, now {n / best['now']:.0f} cases/s, "
+              f"now/before = {best['before'] / best['now']:.2f}; results bitwise equal: "
+              f"{same}; first call (compile or cache load) before {t_old_c:.1f} s, "
+              f"now {t_new_c:.1f} s")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--n-batch", type=int, default=20_000)
+    ap.add_argument("--before", metavar="COMMIT", help="compare with the kernel at COMMIT")
+    ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--n-ivp", type=int, default=8)
     ap.add_argument("--n-control", type=int, default=3)
     ap.add_argument("--n-numpy", type=int, default=2_000)
@@ -242,6 +298,9 @@ def main() -> None:
     g = default_gains()
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} "
           "(other processes share the cores: numbers are lower bounds)")
+    if args.before:
+        before_after(g, args.before, args.n_batch, args.repeat)
+        return
     if args.floor:
         chatter_floor(g)
         return

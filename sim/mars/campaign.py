@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from lgw.sim import executors
 from lgw.sim.mars.batch import BatchResult, simulate_batch
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.gains import Gains
@@ -106,10 +107,8 @@ def read_states_csv(path: str | Path) -> States:
 
 
 def chunk_slices(n: int, chunk: int = DEFAULT_CHUNK) -> list[slice]:
-    """Deterministic chunking: depends on n and chunk only, never on the worker count."""
-    if chunk < 1:
-        raise ParameterError("chunk", chunk, "must be >= 1")
-    return [slice(a, min(a + chunk, n)) for a in range(0, n, chunk)]
+    """Deterministic chunking (``lgw.sim.executors.chunk_slices``, seed 000's default size)."""
+    return executors.chunk_slices(n, chunk)
 
 
 def _run_chunk(r0, v0, m0, gains, start: int, opts: dict[str, Any]) -> BatchResult:
@@ -127,39 +126,22 @@ def run_campaign(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *
     executor="local": in-process, numba threads over cases.
     executor="dask": ``scheduler`` (address of a running dask scheduler) or a LocalCluster
       with ``workers`` single-threaded workers (``processes=False`` keeps them in-process).
+    Both go through ``lgw.sim.executors`` (the same chunks, so the same results).
     """
     if executor == "local":
         return simulate_batch(r0, v0, m0, gains, progress=progress, chunk=chunk, **opts)
     if executor != "dask":
         raise ParameterError("executor", executor, "must be 'local' or 'dask'")
-    if workers is not None and (not isinstance(workers, int) or workers < 1):
-        raise ParameterError("--workers", workers, "must be an integer >= 1")
-    from dask.distributed import Client, LocalCluster
-    from dask.distributed import progress as dask_progress
-
+    executors.check_workers(workers)
     r0 = np.atleast_2d(np.asarray(r0, float))
     v0 = np.atleast_2d(np.asarray(v0, float))
     m0 = np.broadcast_to(np.asarray(m0, float), (r0.shape[0],)).copy()
-    slices = chunk_slices(r0.shape[0], chunk)
-    cluster = None
-    if scheduler is None:
-        cluster = LocalCluster(n_workers=workers or 1, threads_per_worker=1,
-                               processes=processes, dashboard_address=None)
-        client = Client(cluster)
-    else:
-        client = Client(scheduler)
-    try:
-        futs = [client.submit(_run_chunk, r0[sl], v0[sl], m0[sl], gains, sl.start, opts,
-                              pure=False) for sl in slices]
-        if progress:
-            dask_progress(futs)
-        parts = client.gather(futs)
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+    args = [(r0[sl], v0[sl], m0[sl], gains, sl.start, opts)
+            for sl in chunk_slices(r0.shape[0], chunk)]
+    parts = executors.map_dask(_run_chunk, args, workers=workers, scheduler=scheduler,
+                               processes=processes, progress=progress)
     res = BatchResult.concat(parts)
-    res.info["executor"] = f"dask ({scheduler or f'LocalCluster, {workers or 1} workers'})"
+    res.info["executor"] = executors.describe(scheduler, workers)
     return res
 
 

@@ -35,6 +35,7 @@ from functools import cache
 import numba
 import numpy as np
 import sympy as sp
+from lgw.sim.codegen import lambdified_source
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars import mss as mss
 from lgw.theory.mars import supertwisting as st
@@ -71,12 +72,13 @@ LAWS: dict[str, LawSpec] = {}
 
 
 def register_law(spec: LawSpec) -> None:
-    """Add (or replace) a law in the registry; see the module docstring."""
+    """Add (or replace) a law in the registry; see the module docstring.
+
+    The generated code is cached per ``LawSpec`` (and on disk per expression), so replacing a
+    law needs no cache clearing: the new spec is a new key."""
+    if not isinstance(spec, LawSpec):
+        raise ParameterError("spec", type(spec).__name__, "must be a LawSpec")
     LAWS[spec.name] = spec
-    # defined below; not yet at import
-    for fn in ("python_law", "_generated", "numba_law", "numba_law_s2", "numpy_law"):
-        if fn in globals():
-            globals()[fn].cache_clear()
 
 
 register_law(LawSpec("corrected", mss.law_corrected, mss.GAIN_SYMBOLS, _mss_params,
@@ -187,10 +189,13 @@ def law_args(spec: LawSpec) -> tuple[sp.Symbol, ...]:
     return LEAD_ARGS + spec.params
 
 
-@cache
 def python_law(name: str) -> Callable[..., float]:
     """The generated scalar code f(r, v, grav, a_m, m, *params) (plain Python + math)."""
-    spec = get_law(name)
+    return _python_law(get_law(name))
+
+
+@cache
+def _python_law(spec: LawSpec) -> Callable[..., float]:
     return sp.lambdify(law_args(spec), explog(spec.expr()), modules=_NB_MODULES, cse=True)
 
 
@@ -211,15 +216,14 @@ SURFACE_SYMBOLS = (mss.beta1, mss.beta2, mss.q1, mss.q2)
 
 
 @cache
-def _generated(name: str, with_s2: bool) -> dict:
+def _generated(spec: LawSpec, with_s2: bool) -> dict:
     """The generated scalar code behind ``numba_law`` / ``numba_law_s2``: the exact form
     (``explog``), the form at r = v = 0 (``origin_expr``), the ``share_powers`` form and its
     guard, each returning a, or (a, s2) with s2 of (21) computed in the same code (common
     subexpressions shared with the law) when with_s2.  Arguments: law_args, then the surface
     symbols the law does not have (``extra``, taken from surface_params)."""
-    spec = get_law(name)
     exprs = [spec.expr()] + ([mss.surface2()] if with_s2 else [])
-    extra = tuple(x for x in SURFACE_SYMBOLS if x not in spec.params) if with_s2 else ()
+    extra = _extra(spec, with_s2)
     args = law_args(spec) + extra
 
     def lam(es: list[sp.Expr]) -> Callable:
@@ -239,33 +243,58 @@ def _generated(name: str, with_s2: bool) -> dict:
 
 def python_law_origin(name: str) -> Callable[..., float]:
     """``python_law`` of ``origin_expr``: the law at r = v = 0, same arguments."""
-    return _generated(name, False)["origin"]
+    return _generated(get_law(name), False)["origin"]
 
 
-def _numba_axis_fn(name: str, with_s2: bool) -> Callable:
-    spec = get_law(name)
-    gen = _generated(name, with_s2)
+def _extra(spec: LawSpec, with_s2: bool) -> tuple[sp.Symbol, ...]:
+    return tuple(x for x in SURFACE_SYMBOLS if x not in spec.params) if with_s2 else ()
+
+
+def law_source(spec: LawSpec, with_s2: bool) -> str:
+    """Module source defining ``law``, the law compiled for one axis (see ``numba_law`` and
+    ``numba_law_s2``): the generated forms of ``_generated`` as lambdify wrote them
+    (``lgw.sim.codegen.lambdified_source``), each njit-compiled, and the branch between them."""
+    gen = _generated(spec, with_s2)
+    imports: set[str] = set()
+    parts = []
+    for key in ("exact", "origin", "shared", "guard"):
+        if gen.get(key) is None:
+            continue
+        src, imp = lambdified_source(gen[key], f"_{key}")
+        imports |= set(imp)
+        opts = 'error_model="numpy"' + (", fastmath=FASTMATH" if key != "guard" else "")
+        parts += [src, f"_{key} = numba.njit(_{key}, {opts})", ""]
     pars = ", ".join([f"P[i, {j}]" for j in range(len(spec.params))]
                      + [f"SP[i, {SURFACE_SYMBOLS.index(x)}]" for x in gen["extra"]])
     call = f"(r, v, grav, a_m, m, {pars})"
-    ns: dict = {"TINY": TINY}
-    for key in ("exact", "origin", "shared"):
-        if gen[key] is not None:
-            ns[key] = numba.njit(gen[key], error_model="numpy", fastmath=FASTMATH)
     fast = ""
     if gen["shared"] is not None:
-        ns["guard"] = numba.njit(gen["guard"], error_model="numpy")
-        fast = f"    if abs(guard{call}) > TINY:\n        return shared{call}\n"
-    src = (f"def law_p(r, v, grav, a_m, m, P, {'SP, ' if with_s2 else ''}i):\n"
-           f"{fast}"
-           f"    if r == 0.0 and v == 0.0:\n"
-           f"        return origin{call}\n"
-           f"    return exact{call}\n")
-    exec(src, ns)  # noqa: S102  (source generated above from the registry, no user text)
-    return numba.njit(ns["law_p"], error_model="numpy", inline="always")
+        fast = f"    if abs(_guard{call}) > TINY:\n        return _shared{call}\n"
+    parts.append(f"def law(r, v, grav, a_m, m, P, {'SP, ' if with_s2 else ''}i):\n"
+                 f"{fast}"
+                 f"    if r == 0.0 and v == 0.0:\n"
+                 f"        return _origin{call}\n"
+                 f"    return _exact{call}\n\n\n"
+                 'law = numba.njit(law, error_model="numpy", inline="always")\n')
+    fm = "{" + ", ".join(repr(f) for f in sorted(FASTMATH)) + "}"
+    return "\n".join([*sorted(imports), f"TINY = {TINY!r}", f"FASTMATH = {fm}", "", *parts])
 
 
-@cache
+def law_key_parts(spec: LawSpec, with_s2: bool) -> list[str]:
+    """What the generated law depends on: its expression, s2 and the symbols' order."""
+    parts = [spec.name, sp.srepr(spec.expr()), sp.srepr(law_args(spec)), str(with_s2)]
+    if with_s2:
+        parts += [sp.srepr(mss.surface2()), sp.srepr(_extra(spec, with_s2))]
+    return parts
+
+
+def _law_module(name: str, with_s2: bool):
+    from lgw.sim.mars import kernel
+    if with_s2:
+        return kernel.kernel_module(name)
+    return kernel.law_module(name)
+
+
 def numba_law(name: str) -> Callable[..., float]:
     """The law compiled for one axis: f(r, v, grav, a_m, m, P, i) with P[i] the axis's parameters.
 
@@ -277,28 +306,33 @@ def numba_law(name: str) -> Callable[..., float]:
     At r = v = 0 exactly (an axis at its equilibrium) the law is evaluated with v = 0 substituted
     symbolically (``origin_expr``): the limit along the solution, finite, instead of 0 * inf.
     Elsewhere the ``share_powers`` form is used where it is exact (|x| > TINY for each shared
-    family), ``python_law`` otherwise.
+    family), ``python_law`` otherwise.  Compiled from a generated module in the kernel cache
+    (``lgw.sim.kernel_cache``).
     """
-    return _numba_axis_fn(name, False)
+    return _law_module(name, False).law
 
 
-@cache
 def numba_law_s2(name: str) -> Callable[..., tuple[float, float]]:
     """The law and s2 (21) in one compiled function: f(r, v, grav, a_m, m, P, SP, i) -> (a, s2),
     SP = ``surface_params`` (used for the s2 symbols the law does not have).  The simulator
     needs s2 at every node; computing it with the law shares |r|^q1, |r|^q2 (and saves one
-    ln and two exp per axis and node for the sliding-mode laws).  Same branches as numba_law."""
-    return _numba_axis_fn(name, True)
+    ln and two exp per axis and node for the sliding-mode laws).  Same branches as numba_law.
+    This is the very function the simulator's kernel calls (``lgw.sim.mars.kernel``)."""
+    return _law_module(name, True).law
 
 
-@cache
 def numpy_law(name: str) -> Callable[..., np.ndarray]:
     """The law as numpy code: f(r, v, grav, a_m, m, P) with r, v (..., 3), m (...,) and P (3, k).
 
     Uses ``theory``'s own lambdification (lgw.theory.mars.mss.law_numeric for the sliding-mode laws,
     lgw.theory.mars.supertwisting.supertwisting_numeric for (46)) where it exists.
     """
-    spec = get_law(name)
+    return _numpy_law(get_law(name))
+
+
+@cache
+def _numpy_law(spec: LawSpec) -> Callable[..., np.ndarray]:
+    name = spec.name
     from lgw.theory.symbolic import LAMBDIFY_MODULES
     modules = [{"sign": np.sign}] + LAMBDIFY_MODULES
     fn0 = sp.lambdify(law_args(spec), origin_expr(spec), modules=modules)

@@ -65,6 +65,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from lgw.sim.options import LIMITS
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.parameters import (
     G_EARTH,
@@ -76,7 +77,6 @@ from lgw.theory.mars.parameters import (
     THRUST_MAX_AXIS,
 )
 
-LIMITS = ("axis", "norm")
 DISTURBANCES = ("none", "sin")
 N_RANGE = (10, 2000)
 

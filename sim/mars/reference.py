@@ -11,9 +11,16 @@ thrust metrics are sampled on a fine grid of the dense output.  Same options and
 from __future__ import annotations
 
 import numpy as np
-from lgw.sim.mars.batch import BatchResult, _check_states, check_m_dry, check_options
+from lgw.sim.mars.batch import (
+    LAND_TOL,
+    BatchResult,
+    _check_states,
+    check_m_dry,
+    check_options,
+)
 from lgw.sim.mars.disturbances import DisturbanceSpec, make_disturbance
 from lgw.sim.mars.laws import get_law, numpy_law
+from lgw.sim.mars.parameters import T_MAX_DEFAULT
 from lgw.sim.mars.plant import drag_accel, plant_rhs, saturate
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.gains import Gains
@@ -172,9 +179,9 @@ def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Ga
                        law: str = "corrected", disturbance: str = "none",
                        dist_amplitude: float | np.ndarray | None = None,
                        thrust_limit: float | None = None, limit: str = "axis",
-                       dt: float | None = None, t_max: float = 120.0,
+                       dt: float | None = None, t_max: float = T_MAX_DEFAULT,
                        eps: float | None = None, seed: int = 0, drag: str = "physical",
-                       isp: float = ISP, land_tol: tuple[float, float] = (0.1, 0.1),
+                       isp: float = ISP, land_tol: tuple[float, float] = LAND_TOL,
                        record: bool = False, progress: bool = False,
                        guidance_drag: str | None = None, stop: str = "landing",
                        case_offset: int = 0, dist_spec: DisturbanceSpec | None = None,

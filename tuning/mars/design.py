@@ -51,6 +51,7 @@ import cvxpy as cp
 import numpy as np
 from lgw.sim.mars import campaign
 from lgw.sim.mars.parameters import CD_LANDER, DT_DEFAULT, RHO0_MARS
+from lgw.sim.options import LIMITS  # noqa: F401  (re-exported for cmd_tune)
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.bounds import axis_bounds, tf_min
 from lgw.theory.mars.gains import Disturbance, Gains
@@ -70,7 +71,6 @@ from lgw.theory.settling import exact_bound
 
 BOUNDS = ("exact", "polyakov")
 OBJECTIVES = ("peak-thrust", "fuel")
-LIMITS = ("axis", "norm")
 SOLVER = "CLARABEL"
 # Clarabel tolerances for the oracle (defaults ~1e-8 on the log-space problem leave ~1e-5 in
 # the variables, where the optimum is flat).

@@ -1,0 +1,93 @@
+"""Chunking and executors, for every system: cases cut into fixed-size chunks, run in process
+or on dask.
+
+Chunks depend on the number of cases and the chunk size only, never on the worker count, and
+every case is integrated independently (a system draws any random input from the case's own
+seed), so results are identical whatever the executor layout.
+
+* ``run_local(fn, n, chunk)``: fn(slice) for each chunk in order, in this process (the kernel
+  parallelises over the cases of a chunk with numba threads), with an optional progress bar;
+* ``map_dask(task, args)``: task(*a) for each a on a dask.distributed cluster, either a running
+  one (``scheduler`` address) or a LocalCluster of ``workers`` single-threaded workers; results
+  in order.  Scheduler-connection checks belong to the caller (the CLI).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+from lgw.theory.errors import ParameterError
+
+
+def check_chunk(chunk: int) -> int:
+    if isinstance(chunk, bool) or not isinstance(chunk, int | np.integer) or chunk < 1:
+        raise ParameterError("chunk", chunk, "must be an integer >= 1")
+    return int(chunk)
+
+
+def chunk_slices(n: int, chunk: int) -> list[slice]:
+    """Deterministic chunking: depends on n and chunk only, never on the worker count."""
+    chunk = check_chunk(chunk)
+    return [slice(a, min(a + chunk, n)) for a in range(0, n, chunk)]
+
+
+def run_local(fn: Callable[[slice], None], n: int, chunk: int, *, progress: bool = False,
+              label: str = "simulating") -> None:
+    """Call fn(sl) for every chunk of n cases, in order; a rich progress bar on stderr if
+    ``progress`` and there is more than one chunk."""
+    slices = chunk_slices(n, chunk)
+    if not (progress and len(slices) > 1):
+        for sl in slices:
+            fn(sl)
+        return
+    from rich.console import Console
+    from rich.progress import Progress
+
+    with Progress(console=Console(stderr=True), transient=True) as bar:
+        task = bar.add_task(f"{label} {n} cases", total=n)
+        for sl in slices:
+            fn(sl)
+            bar.advance(task, sl.stop - sl.start)
+
+
+def check_workers(workers: int | None) -> None:
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):
+        raise ParameterError("--workers", workers, "must be an integer >= 1")
+
+
+def map_dask(task: Callable[..., Any], args: Sequence[tuple], *, workers: int | None = None,
+             scheduler: str | None = None, processes: bool = True,
+             progress: bool = False) -> list[Any]:
+    """[task(*a) for a in args] on dask.distributed (results in order).
+
+    ``scheduler``: address of a running scheduler; otherwise a LocalCluster with ``workers``
+    single-threaded workers (``processes=False`` keeps them in this process).  ``task`` must be
+    importable by the workers (a module-level function)."""
+    check_workers(workers)
+    from dask.distributed import Client, LocalCluster
+    from dask.distributed import progress as dask_progress
+
+    cluster = None
+    if scheduler is None:
+        cluster = LocalCluster(n_workers=workers or 1, threads_per_worker=1,
+                               processes=processes, dashboard_address=None)
+        client = Client(cluster)
+    else:
+        client = Client(scheduler)
+    try:
+        futs = [client.submit(task, *a, pure=False) for a in args]
+        if progress:
+            dask_progress(futs)
+        return client.gather(futs)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def describe(scheduler: str | None, workers: int | None) -> str:
+    """How a dask run was executed, for a result's info."""
+    return f"dask ({scheduler or f'LocalCluster, {workers or 1} workers'})"

@@ -1,0 +1,368 @@
+"""The generic batched integrator: classical RK4 and adaptive Dormand-Prince 5(4) over N cases.
+
+A system supplies a compiled vector field and its own event and metric hooks; this module
+supplies the stepping (RK4 with a fixed step, or Dormand-Prince 5(4) with scipy RK45's error
+control, a PI step controller and a step limit), non-finite detection, the trajectory record,
+the cubic Hermite helpers for locating events inside a step, and the parallel loop over cases.
+The seed 000 client is ``lgw.sim.mars.kernel``.
+
+How a kernel is assembled.  numba resolves global names when it compiles, and ``cache=True``
+only works for functions defined in a real source file whose globals are importable (a closure
+over a compiled law gets a fresh identity in every process, so its cache never hits).  A kernel
+is therefore a generated module (``lgw.sim.kernel_cache``): the system's generated law, then the
+system's hook functions and then ``case`` / ``kernel`` below, copied as source, so that in that
+module the names the templates use resolve to that system's hooks.  The functions here marked
+"template" are plain Python (not compiled in this module); everything else is compiled once.
+
+The hook contract (names in the generated module; ``i`` is the case, ``C`` the tuple of per-case
+input arrays (first axis = case), ``Q`` the tuple of shared values, ``R`` the tuple of per-case
+result arrays):
+  NY, NX, NS                      state size, auxiliary outputs of the vector field, trackers;
+  sys_init(i, C, Q, y, S)         the initial state into y (NY), trackers S (NS) initialised;
+  sys_rhs(t, Y, yr, K, kr, X, i, C, Q)
+                                  y' at (t, Y[yr]) into K[kr]; auxiliary outputs (command,
+                                  sliding variables, ...) into X (NX).  Called at one site
+                                  (inlined): the stages, and last the new node;
+  sys_start(i, y, X, S, C, Q, R)  events at t = 0 (X: aux at y); returns True to stop at once;
+  sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R) -> (code, theta)
+                                  events and metrics of one accepted step from (t, y, y' = k1)
+                                  to (t + h, yn, k1n); XL the aux at y, X at yn.  code CONTINUE,
+                                  STOP_AT_NODE (accept the node, then stop: e.g. landing), or
+                                  STOP_INSIDE (stop at t + theta h on the Hermite interpolant,
+                                  the node is not accepted: e.g. dry mass);
+  sys_finish(i, t, y, S, C, Q, R) write the case's results.
+The integrator itself writes the generic outcomes G = (nonfinite, t_end, y_end, steps,
+step_limit) and, when recording, y and X at every accepted node.
+
+Integration options O = (method, dt, nsteps, rtol, atol, max_step, t_max, max_steps, record),
+built by ``integration_tuple`` from ``lgw.sim.options.IntegrationOptions``.
+"""
+
+from __future__ import annotations
+
+import inspect
+import math
+
+import numba
+import numpy as np
+from lgw.sim.options import IntegrationOptions
+
+METHOD_CODE = {"rk4": 0, "dopri5": 1}
+# sys_step's return codes
+CONTINUE = 0
+STOP_AT_NODE = 1
+STOP_INSIDE = 2
+
+# dopri5 step control: PI controller with Hairer & Wanner's DOPRI5 beta (Solving ODEs I,
+# II.4), growth at most 10x per step (as scipy's RK45) and none right after a rejection.
+# Measured on seed 000 Table II: beta 0, 0.04, 0.08 take 40, 39, 38 attempts per case at
+# rtol 1e-4 (~13 of them rejected, at the non-smooth arrivals of s1, s2 at 0).
+PI_BETA = 0.04
+PI_MAXFAC = 10.0
+# Bisection steps for an event inside a step: 2^-60 of the step, below double precision.
+BISECT_ITERS = 60
+
+# Dormand & Prince (1980) 5(4) tableau, as in scipy's RK45 (Hairer, Norsett & Wanner, Solving
+# ODEs I, Table 5.2): stage nodes C, coefficients A, 5th-order weights B (the 7th stage is the
+# FSAL derivative at the new node), error weights E = B - B*.
+DP_C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
+DP_A = np.array([
+    [0, 0, 0, 0, 0, 0],
+    [1 / 5, 0, 0, 0, 0, 0],
+    [3 / 40, 9 / 40, 0, 0, 0, 0],
+    [44 / 45, -56 / 15, 32 / 9, 0, 0, 0],
+    [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0, 0],
+    [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656, 0]])
+DP_B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0])
+DP_E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
+
+
+# --- compiled helpers (shared by every system) --------------------------------------------
+
+@numba.njit(error_model="numpy", inline="always", cache=True)
+def _herm(p0: float, d0: float, p1: float, d1: float, h: float, th: float) -> float:
+    """Cubic Hermite interpolant at th in [0, 1] of a step of length h with values p0, p1 and
+    derivatives d0, d1 at its ends (O(h^4) accurate, like RK4 itself)."""
+    t2 = th * th
+    t3 = t2 * th
+    return ((2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + th) * h * d0
+            + (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * h * d1)
+
+
+@numba.njit(error_model="numpy", cache=True)
+def _herm_min(p0: float, d0: float, p1: float, d1: float, h: float, b: float) -> float:
+    """Minimum over th in [0, b] of the cubic Hermite interpolant (``_herm``): the end points
+    and the roots of its derivative, a quadratic in th."""
+    lo = min(p0, _herm(p0, d0, p1, d1, h, b))
+    qa = 6.0 * p0 + 3.0 * h * d0 - 6.0 * p1 + 3.0 * h * d1
+    qb = -6.0 * p0 - 4.0 * h * d0 + 6.0 * p1 - 2.0 * h * d1
+    qc = h * d0
+    if qa == 0.0:
+        if qb != 0.0:
+            th = -qc / qb
+            if 0.0 < th < b:
+                lo = min(lo, _herm(p0, d0, p1, d1, h, th))
+        return lo
+    disc = qb * qb - 4.0 * qa * qc
+    if disc < 0.0:
+        return lo
+    sq = math.sqrt(disc)
+    for th in ((-qb - sq) / (2.0 * qa), (-qb + sq) / (2.0 * qa)):
+        if 0.0 < th < b:
+            lo = min(lo, _herm(p0, d0, p1, d1, h, th))
+    return lo
+
+
+@numba.njit(error_model="numpy", inline="always", cache=True)
+def _band(sa: float, sb: float, eps: float) -> tuple[float, float]:
+    """[lo, hi] in [0, 1] where the linear interpolant of s has |s| <= eps (lo > hi: empty)."""
+    ds = sb - sa
+    if ds == 0.0:
+        return (0.0, 1.0) if abs(sa) <= eps else (1.0, 0.0)
+    a = (-eps - sa) / ds
+    b = (eps - sa) / ds
+    lo = min(a, b)
+    hi = max(a, b)
+    return max(lo, 0.0), min(hi, 1.0)
+
+
+@numba.njit(error_model="numpy", cache=True)
+def _herm_first_below(p0: float, d0: float, p1: float, d1: float, h: float,
+                      level: float) -> float:
+    """Bisection for the first th in [0, 1] with Hermite(th) <= level, given p1 <= level
+    (the crossing of a monotone quantity such as the mass reaching the dry mass)."""
+    a = 0.0
+    b = 1.0
+    for _ in range(BISECT_ITERS):
+        mid = 0.5 * (a + b)
+        if _herm(p0, d0, p1, d1, h, mid) <= level:
+            b = mid
+        else:
+            a = mid
+    return b
+
+
+# --- templates (copied into each generated kernel module) --------------------------------
+
+def case(i, C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
+    """Case i from start to its end (template; the hooks are the generated module's).
+
+    A serial function called from the kernel's loop: with the inlined vector field in the
+    prange body itself the parallel compile took minutes."""
+    method, dt, nsteps, rtol, atol, hmax, t_max, max_steps, record = O
+    nonfinite, t_end, y_end, nstep_out, steplim = G
+    Y = np.empty((3, NY))  # y, the stage input, the new node  # noqa: F821
+    # RK4: k1..k4 and y' at the new node (row 4); dopri5: k1..k6 and k7 = y' at the new node
+    K = np.empty((7, NY))  # noqa: F821
+    nst = 4 if method == 0 else 6  # rhs calls per step; the last one is at the new node
+    y = Y[0]
+    yt = Y[1]
+    yn = Y[2]
+    k1 = K[0]
+    k2 = K[1]
+    k3 = K[2]
+    k4 = K[3]
+    k1n = K[nst]
+    X = np.empty(NX)  # auxiliary outputs of the latest rhs call  # noqa: F821
+    XL = np.empty(NX)  # ... at the current node  # noqa: F821
+    S = np.empty(NS)  # the system's trackers  # noqa: F821
+    sys_init(i, C, Q, y, S)  # noqa: F821
+    sys_rhs(0.0, Y, 0, K, 0, X, i, C, Q)  # y' and the auxiliary outputs at t = 0  # noqa: F821
+    for j in range(NX):  # noqa: F821
+        XL[j] = X[j]
+    done = sys_start(i, y, X, S, C, Q, R)  # noqa: F821
+    if record:
+        for j in range(NY):  # noqa: F821
+            rec_y[i, 0, j] = y[j]
+        for j in range(NX):  # noqa: F821
+            rec_x[i, 0, j] = XL[j]
+    t = 0.0
+    step = 0  # accepted steps
+    attempts = 0  # dopri5: accepted + rejected steps
+    stalled = False
+    rejected = False
+    bad = False
+    err_old = 1e-4
+    h_try = min(dt, hmax)
+    while True:
+        if done:
+            break
+        if method == 0:
+            if step >= nsteps:
+                break
+            h = dt
+            t_new = (step + 1) * dt
+        else:
+            rem = t_max - t
+            if rem <= 1e-12 * t_max:
+                break
+            if attempts >= max_steps:
+                stalled = True
+                break
+            h = h_try if h_try < rem * (1.0 - 1e-9) else rem
+            t_new = t + h if h < rem else t_max
+        # RK4 or the Dormand-Prince stages.  The stages and the new node (whose derivative
+        # is the next step's k1) share one rhs call site: rhs is inlined, and four copies
+        # of it made the compile several times slower
+        finite = True
+        for stage in range(nst):
+            yr = 1
+            tst = t + 0.5 * h
+            if stage == nst - 1:
+                # the new node (its derivative is the next step's k1)
+                for j in range(NY):  # noqa: F821
+                    if method == 1:
+                        acc = 0.0
+                        for q in range(6):
+                            acc += DP_B[q] * K[q, j]
+                        yn[j] = y[j] + h * acc
+                    else:
+                        yn[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+                    if not math.isfinite(yn[j]):
+                        finite = False
+                if not finite:
+                    break
+                yr = 2
+                tst = t_new
+            elif method == 1:
+                st = stage + 1
+                for j in range(NY):  # noqa: F821
+                    acc = 0.0
+                    for q in range(st):
+                        acc += DP_A[st, q] * K[q, j]
+                    yt[j] = y[j] + h * acc
+                tst = t + DP_C[st] * h
+            elif stage == 0:
+                for j in range(NY):  # noqa: F821
+                    yt[j] = y[j] + 0.5 * h * k1[j]
+            elif stage == 1:
+                for j in range(NY):  # noqa: F821
+                    yt[j] = y[j] + 0.5 * h * k2[j]
+            else:
+                for j in range(NY):  # noqa: F821
+                    yt[j] = y[j] + h * k3[j]
+                tst = t + h
+            sys_rhs(tst, Y, yr, K, stage + 1, X, i, C, Q)  # noqa: F821
+        if not finite:
+            bad = True
+            break
+        if method == 1:
+            # error control as in scipy's RK45 (Hairer, Norsett & Wanner II.4): RMS of
+            # h E.K / (atol + rtol max(|y|, |y_new|)); reject above 1, safety 0.9
+            attempts += 1
+            errn = 0.0
+            for j in range(NY):  # noqa: F821
+                acc = 0.0
+                for q in range(7):
+                    acc += DP_E[q] * K[q, j]
+                sc = atol + rtol * max(abs(y[j]), abs(yn[j]))
+                errn += (h * acc / sc) ** 2
+            errn = math.sqrt(errn / NY)  # noqa: F821
+            if not errn <= 1.0:  # NaN rejects too
+                h_try = h * max(0.2, 0.9 * errn ** -0.2) if errn == errn else 0.2 * h
+                rejected = True
+                continue
+            # PI control (Hairer & Wanner's DOPRI5: beta = 0.04); no growth right after a
+            # rejection (as scipy's RK45)
+            fac = 0.9 * max(errn, 1e-10) ** (-0.2 + 0.75 * PI_BETA) * err_old ** PI_BETA
+            fac = min(PI_MAXFAC, max(0.2, fac))
+            if rejected:
+                fac = min(fac, 1.0)
+            rejected = False
+            err_old = max(errn, 1e-4)
+            h_try = min(h * fac, hmax)
+        code, theta = sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R)  # noqa: F821
+        if code == STOP_INSIDE:
+            for j in range(NY):  # noqa: F821
+                y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, theta)
+            t = t + theta * h
+            break
+        for j in range(NY):  # noqa: F821
+            y[j] = yn[j]
+            k1[j] = k1n[j]
+        for j in range(NX):  # noqa: F821
+            XL[j] = X[j]
+        t = t_new
+        step += 1
+        if record:
+            for j in range(NY):  # noqa: F821
+                rec_y[i, step, j] = y[j]
+            for j in range(NX):  # noqa: F821
+                rec_x[i, step, j] = XL[j]
+        if code == STOP_AT_NODE:
+            done = True
+    sys_finish(i, t, y, S, C, Q, R)  # noqa: F821
+    nonfinite[i] = bad
+    nstep_out[i] = step
+    steplim[i] = stalled
+    t_end[i] = t
+    for j in range(NY):  # noqa: F821
+        y_end[i, j] = yn[j] if bad else y[j]
+
+
+def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
+    """All cases of a chunk, in parallel over cases (numba.prange) or serially."""
+    for i in numba.prange(G[1].shape[0]):
+        case_fn(i, C, Q, R, O, G, rec_y, rec_x)  # noqa: F821
+
+
+def template_source() -> str:
+    """The source of the templates, as written into each generated kernel module: ``case`` is
+    compiled as ``case_fn`` (serial, shared), ``kernel`` twice, as two functions of their own
+    (numba's cache index is per function and does not tell parallel=True from False):
+    ``kernel_parallel`` and ``kernel_serial``."""
+    k = inspect.getsource(kernel)
+    return "\n\n".join([inspect.getsource(case),
+                         k.replace("def kernel(", "def kernel_parallel(", 1),
+                         k.replace("def kernel(", "def kernel_serial(", 1)])
+
+
+KERNEL_IMPORTS = (
+    "import math",
+    "import numba",
+    "import numpy as np",
+    "from lgw.sim.integrate import (CONTINUE, DP_A, DP_B, DP_C, DP_E, PI_BETA, PI_MAXFAC,",
+    "    STOP_AT_NODE, STOP_INSIDE, _band, _herm, _herm_first_below, _herm_min)",
+)
+
+KERNEL_FOOTER = '''
+case_fn = numba.njit(case, error_model="numpy", cache=True)
+kernel_parallel = numba.njit(kernel_parallel, error_model="numpy", parallel=True, cache=True)
+# the same loop without threads, for executors (dask) that parallelise over chunks themselves
+kernel_serial = numba.njit(kernel_serial, error_model="numpy", parallel=False, cache=True)
+'''
+
+
+def kernel_module_source(header: str, system_source: str, sizes: dict[str, int]) -> str:
+    """A kernel module: the system's header (its generated law), the sizes NY, NX, NS, the
+    system's hooks, the integrator templates and their compilation."""
+    consts = "\n".join(f"{k} = {int(v)}" for k, v in sizes.items())
+    return "\n".join(["# generated by lgw.sim.integrate: do not edit (a cache entry)",
+                      *KERNEL_IMPORTS, "", header, "", consts, "", system_source, "",
+                      template_source(), KERNEL_FOOTER])
+
+
+def integration_tuple(opt: IntegrationOptions, t_max: float) -> tuple:
+    """The kernel's O tuple for the options and horizon t_max (s)."""
+    nsteps = int(math.ceil(t_max / opt.dt - 1e-9))
+    return (METHOD_CODE[opt.method], float(opt.dt), nsteps, float(opt.rtol), float(opt.atol),
+            float(opt.max_step), float(t_max), int(opt.max_steps), bool(opt.record))
+
+
+def generic_outputs(n: int, ny: int) -> dict[str, np.ndarray]:
+    """The per-case arrays the integrator writes: nonfinite, t_end, y_end, steps, step_limit."""
+    return {"nonfinite": np.zeros(n, bool), "t_end": np.empty(n), "y_end": np.empty((n, ny)),
+            "steps": np.zeros(n, np.int64), "step_limit": np.zeros(n, bool)}
+
+
+GENERIC_FIELDS = ("nonfinite", "t_end", "y_end", "steps", "step_limit")
+
+
+def run_chunk(kernel_fn, sl: slice, C: tuple, Q: tuple, R: tuple, O: tuple,  # noqa: N803
+              G: tuple, rec_y: np.ndarray, rec_x: np.ndarray) -> None:
+    """Run cases ``sl`` (a slice of the first axis of C, R, G and, when recording, of the
+    records): the slices are views, so the results land in the full arrays."""
+    record = O[-1]
+    kernel_fn(tuple(a[sl] for a in C), Q, tuple(a[sl] for a in R), O,
+              tuple(a[sl] for a in G), rec_y[sl] if record else rec_y,
+              rec_x[sl] if record else rec_x)

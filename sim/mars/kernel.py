@@ -1,0 +1,351 @@
+"""Seed 000's client of the generic integrator (``lgw.sim.integrate``): plant, events, metrics.
+
+The hooks below are templates in the sense of ``lgw.sim.integrate``: plain Python copied into
+the generated kernel module of one law (``kernel_for``), where ``law`` is that law's generated
+code (``lgw.sim.mars.laws.law_module_source``) and the integrator's ``case`` / ``kernel`` call
+them.  What they compute is documented in ``lgw.sim.mars.batch``.
+
+State y = [r (3), v (3), m] (seed 000 (10)-(14)); auxiliary outputs X = [F (3) after the
+thrust limit, F (3) before it, s2 (3) of (21)]; trackers S, slots below.
+
+Per-case inputs C = (r0, v0, m0, dcoef, domega, dphase); shared Q = (P, SP, grav, area, pkind,
+gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v, stop_landing, m_dry); results R = the
+first ``len(RESULT_FIELDS)`` arrays of ``lgw.sim.mars.batch.ARRAY_FIELDS``.
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import math
+
+import numba
+from lgw.sim.mars.parameters import (
+    CD_LANDER,
+    H_MARS,
+    PRINTED_DRAG_COEF,
+    PRINTED_DRAG_DECAY,
+    RHO0_MARS,
+)
+
+NY = 7  # r, v, m
+NX = 9  # F after the limit, F before, s2
+# tracker slots in S
+TF = 0  # 6: first entry into the band, s1 x/y/z then s2 x/y/z
+TX = 6  # 6: last exit
+SOLD = 12  # 6: s at the current node
+PK = 18  # 3: peak |F| after the limit
+PKU = 21  # 3: before
+TSAT = 24  # time saturated
+ZMIN = 25  # lowest altitude
+GROUND = 26  # 1.0 once r_z < 0 before the outcome
+LANDED = 27
+DRY = 28
+TLAND = 29
+NS = 30
+
+RESULT_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thrust",
+                 "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact",
+                 "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit", "fuel_exhausted")
+
+
+@numba.njit(error_model="numpy", inline="always", cache=True)
+def _drag_fac(kind: int, rz: float) -> float:
+    """Altitude factor of the drag model (computed once per RHS, shared by the three axes)."""
+    if kind == 1:  # physical: rho(rz)/rho0 = e^(-rz/H)
+        return math.exp(-rz / H_MARS)
+    if kind == 2:  # seed 000 (12) as printed: e^(-0.0009 rz)
+        return math.exp(-PRINTED_DRAG_DECAY * rz)
+    return 0.0
+
+
+@numba.njit(error_model="numpy", inline="always", cache=True)
+def _drag(kind: int, fac: float, vi: float, area: float, m: float) -> float:
+    if kind == 1:  # physical: -(1/2) rho0 e^(-rz/H) C_D A |v| v / m
+        return -0.5 * RHO0_MARS * fac * CD_LANDER * area * abs(vi) * vi / m
+    if kind == 2:  # seed 000 (12) as printed: -0.699 v^2 e^(-0.0009 rz) / (A m)
+        return -PRINTED_DRAG_COEF * vi * vi * fac / (area * m)
+    return 0.0
+
+
+# --- templates ----------------------------------------------------------------------------
+
+def sys_init(i, C, Q, y, S):  # noqa: N803
+    r0, v0, m0, dcoef, domega, dphase = C
+    for ax in range(3):
+        y[ax] = r0[i, ax]
+        y[3 + ax] = v0[i, ax]
+    y[6] = m0[i]
+    for j in range(6):
+        S[TF + j] = math.nan
+        S[TX + j] = math.nan
+    for ax in range(3):
+        S[PK + ax] = 0.0
+        S[PKU + ax] = 0.0
+    S[TSAT] = 0.0
+    S[ZMIN] = y[2]
+    S[GROUND] = 1.0 if y[2] < 0.0 else 0.0
+    S[LANDED] = 0.0
+    S[DRY] = 0.0
+    S[TLAND] = math.nan
+
+
+def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
+    """y' at (t, Y[yr]) into K[kr]: seed 000 (10), (11), (13), (14) with the law's command
+    saturated by the limit; X = [F after the limit, F before, s2 (21) per axis]."""
+    r0, v0, m0, dcoef, domega, dphase = C
+    (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
+     stop_landing, m_dry) = Q
+    m = Y[yr, 6]
+    fac_g = _drag_fac(gkind, Y[yr, 2])
+    fac_p = fac_g if pkind == gkind else _drag_fac(pkind, Y[yr, 2])
+    for ax in range(3):
+        am = _drag(gkind, fac_g, Y[yr, 3 + ax], area[ax], m)
+        a, X[6 + ax] = law(Y[yr, ax], Y[yr, 3 + ax], grav[ax], am, m, P, SP, ax)  # noqa: F821
+        X[3 + ax] = m * a
+    if lim == 1:
+        for ax in range(3):
+            f = X[3 + ax]
+            X[ax] = fmax if f > fmax else (-fmax if f < -fmax else f)
+    elif lim == 2:
+        ninf = 0
+        for ax in range(3):
+            if math.isinf(X[3 + ax]):
+                ninf += 1
+        if ninf > 0:  # direction of the infinite components, then scale to the limit
+            for ax in range(3):
+                fu = X[3 + ax]
+                X[ax] = (1.0 if fu > 0 else -1.0) if math.isinf(fu) else 0.0
+        else:
+            for ax in range(3):
+                X[ax] = X[3 + ax]
+        n = math.sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2])
+        if n > fmax or ninf > 0:
+            for ax in range(3):
+                X[ax] = X[ax] * (fmax / n)
+    else:
+        for ax in range(3):
+            X[ax] = X[3 + ax]
+    fn = math.sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2])
+    for ax in range(3):
+        # "sin" arrives here as kind 2 with one unit-frequency term (simulate_batch): a
+        # separate one-call branch was executed speculatively by LLVM at every RHS
+        if dkind == 2:
+            ap = 0.0
+            for k in range(dcoef.shape[2]):
+                ap += dcoef[i, ax, k] * math.sin(domega[i, ax, k] * t + dphase[i, ax, k])
+        elif dkind == 3:
+            s2 = X[6 + ax]
+            ap = -damp[ax] * (1.0 if s2 > 0 else (-1.0 if s2 < 0 else 0.0))
+        else:
+            ap = 0.0
+        K[kr, ax] = Y[yr, 3 + ax]
+        K[kr, 3 + ax] = (X[ax] / m + grav[ax]
+                         + _drag(pkind, fac_p, Y[yr, 3 + ax], area[ax], m) + ap)
+    K[kr, 6] = -fn / c
+
+
+def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
+    """Bands entered at t = 0 and landing at t = 0; True if the case ends there."""
+    (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
+     stop_landing, m_dry) = Q
+    (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
+     ts1x, ts2x, fexh) = R
+    for ax in range(3):
+        S[SOLD + ax] = y[ax]
+        S[SOLD + 3 + ax] = X[6 + ax]
+    for j in range(6):
+        if abs(S[SOLD + j]) <= eps:
+            S[TF + j] = 0.0
+    if (math.sqrt(y[0] ** 2 + y[1] ** 2 + y[2] ** 2) <= tol_r
+            and math.sqrt(y[3] ** 2 + y[4] ** 2 + y[5] ** 2) <= tol_v):
+        S[LANDED] = 1.0
+        S[TLAND] = 0.0
+        for ax in range(3):
+            r_land[i, ax] = y[ax]
+            v_land[i, ax] = y[3 + ax]
+        fuel[i] = 0.0
+    return S[LANDED] != 0.0 and stop_landing
+
+
+def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
+    """Dry mass, s-bands, landing and the metrics of one accepted step (lgw.sim.mars.batch)."""
+    r0, v0, m0, dcoef, domega, dphase = C
+    (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
+     stop_landing, m_dry) = Q
+    (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
+     ts1x, ts2x, fexh) = R
+    has_landed = S[LANDED] != 0.0
+    dry = S[DRY] != 0.0
+    # dry mass: first th with m(th) <= m_dry, bisection on the Hermite interpolant
+    ended = has_landed or dry  # the case's outcome was reached before this step
+    thd = 1.0
+    dry_now = False
+    if not dry and yn[6] <= m_dry:
+        dry_now = True
+        thd = _herm_first_below(y[6], k1[6], yn[6], k1n[6], h, m_dry)  # noqa: F821
+    # with stop="landing" a case that runs dry ends at thd
+    bend = thd if stop_landing else 1.0
+    # sliding-variable bands, linear between nodes (up to the dry-mass stop)
+    for j in range(6):
+        s_new = yn[j] if j < 3 else X[3 + j]  # s2 from the rhs call at the new node
+        lo, hi = _band(S[SOLD + j], s_new, eps)  # noqa: F821
+        if lo <= hi and lo <= bend:
+            if math.isnan(S[TF + j]):
+                S[TF + j] = t + lo * h
+            if hi < bend:
+                S[TX + j] = t + hi * h
+        S[SOLD + j] = s_new
+    if not ended:
+        # metrics until the outcome (landing or dry mass): command at the step's left node
+        sat = False
+        for ax in range(3):
+            S[PK + ax] = max(S[PK + ax], abs(XL[ax]))
+            S[PKU + ax] = max(S[PKU + ax], abs(XL[3 + ax]))
+            if XL[ax] != XL[3 + ax]:
+                sat = True
+        rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
+        vn = math.sqrt(yn[3] ** 2 + yn[4] ** 2 + yn[5] ** 2)
+        frac = thd
+        if rn <= tol_r and vn <= tol_v:
+            # bisection on L(th) = max(|r|/tol_r, |v|/tol_v) - 1, Hermite in th
+            a = 0.0
+            b = 1.0
+            for _ in range(BISECT_ITERS):  # noqa: F821
+                mid = 0.5 * (a + b)
+                rr = 0.0
+                vv = 0.0
+                for ax in range(3):
+                    rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, mid) ** 2  # noqa: F821
+                    vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h,  # noqa: F821
+                                mid) ** 2
+                if math.sqrt(rr) <= tol_r and math.sqrt(vv) <= tol_v:
+                    b = mid
+                else:
+                    a = mid
+            if b <= thd:  # landed before (or as) the mass reached m_dry
+                frac = b
+                has_landed = True
+                S[LANDED] = 1.0
+                S[TLAND] = t + b * h
+                for ax in range(3):
+                    r_land[i, ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, b)  # noqa: F821
+                    v_land[i, ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax],  # noqa: F821
+                                          k1n[3 + ax], h, b)
+                fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)  # noqa: F821
+                if stop_landing:
+                    dry_now = False  # the case ends at landing, above m_dry
+        if dry_now and not has_landed:  # out of propellant before landing
+            fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, thd)  # noqa: F821
+        if sat:
+            S[TSAT] += frac * h
+        # lowest point of the step up to its end (landing, dry mass or the node) on the
+        # Hermite interpolant: node sampling misses a dip below ground that is shorter than
+        # the step (dopri5's steps are ~1 s)
+        zn = _herm_min(y[2], k1[2], yn[2], k1n[2], h, frac)  # noqa: F821
+        if zn < S[ZMIN]:
+            S[ZMIN] = zn
+        if zn < 0.0:
+            S[GROUND] = 1.0
+        if has_landed:  # the command at the landing node counts too
+            for ax in range(3):
+                S[PK + ax] = max(S[PK + ax], abs(X[ax]))
+                S[PKU + ax] = max(S[PKU + ax], abs(X[3 + ax]))
+    if dry_now:
+        S[DRY] = 1.0
+        if stop_landing:  # out of propellant: the case ends at th = thd
+            return STOP_INSIDE, thd  # noqa: F821
+    if has_landed and stop_landing:
+        return STOP_AT_NODE, thd  # noqa: F821
+    return CONTINUE, thd  # noqa: F821
+
+
+def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
+    r0, v0, m0, dcoef, domega, dphase = C
+    (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
+     ts1x, ts2x, fexh) = R
+    has_landed = S[LANDED] != 0.0
+    dry = S[DRY] != 0.0
+    landed[i] = has_landed
+    fexh[i] = dry
+    t_land[i] = S[TLAND]
+    if not has_landed:
+        if not dry:
+            fuel[i] = m0[i] - y[6]
+        for ax in range(3):
+            r_land[i, ax] = math.nan
+            v_land[i, ax] = math.nan
+    for ax in range(3):
+        peak[i, ax] = S[PK + ax]
+        peak_u[i, ax] = S[PKU + ax]
+        ts1[i, ax] = S[TF + ax]
+        ts2[i, ax] = S[TF + 3 + ax]
+        ts1x[i, ax] = S[TX + ax]
+        ts2x[i, ax] = S[TX + 3 + ax]
+    tsat[i] = S[TSAT]
+    minalt[i] = S[ZMIN]
+    ground[i] = S[GROUND] != 0.0
+
+
+HOOKS = (sys_init, sys_rhs, sys_start, sys_step, sys_finish)
+SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "ZMIN": ZMIN,
+         "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND}
+
+
+def hooks_source() -> str:
+    """The hooks as written into a kernel module, with the tracker slots they use."""
+    slots = "\n".join(f"{k} = {v}" for k, v in SLOTS.items())
+    return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
+                      "from lgw.sim.mars.kernel import _drag, _drag_fac", "", slots, "",
+                      *(inspect.getsource(f) + "\n" for f in HOOKS),
+                      *(f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', "
+                        "inline='always')" for f in HOOKS)])
+
+
+# --- assembly -------------------------------------------------------------------------------
+
+def _key_sources() -> list[str]:
+    """The code the machine code depends on beyond the law (see lgw.sim.kernel_cache)."""
+    import lgw
+    from lgw.sim import codegen, integrate, kernel_cache
+    from lgw.sim.mars import kernel, laws, parameters
+    return [lgw.__version__, *kernel_cache.source_of(codegen, integrate, kernel_cache, kernel,
+                                                     laws, parameters)]
+
+
+def _stem(kind: str, name: str, parts: list[str]) -> str:
+    from lgw.sim import kernel_cache
+    slug = "".join(c if c.isalnum() else "_" for c in name)
+    return f"mars_{kind}_{slug}_{kernel_cache.key(parts)}"
+
+
+@functools.cache
+def _kernel_module(spec):
+    from lgw.sim import integrate, kernel_cache
+    from lgw.sim.mars.laws import law_key_parts, law_source
+    stem = _stem("kernel", spec.name, law_key_parts(spec, True) + _key_sources())
+    return kernel_cache.load_module(stem, lambda: integrate.kernel_module_source(
+        law_source(spec, True), hooks_source(), {"NY": NY, "NX": NX, "NS": NS}))
+
+
+@functools.cache
+def _law_module(spec):
+    from lgw.sim import kernel_cache
+    from lgw.sim.mars.laws import law_key_parts, law_source
+    stem = _stem("law", spec.name, law_key_parts(spec, False) + _key_sources())
+    return kernel_cache.load_module(stem, lambda: "\n".join(
+        ["# generated by lgw.sim.mars.kernel: do not edit (a cache entry)", "import math",
+         "import numba", "", law_source(spec, False)]))
+
+
+def kernel_module(name: str):
+    """The generated kernel module of law ``name`` (``kernel_parallel``, ``kernel_serial``,
+    ``case_fn``, ``law``), from the disk cache (written on first use)."""
+    from lgw.sim.mars.laws import get_law
+    return _kernel_module(get_law(name))
+
+
+def law_module(name: str):
+    """The generated module of law ``name`` alone (``law`` without s2), for tests and tools."""
+    from lgw.sim.mars.laws import get_law
+    return _law_module(get_law(name))
