@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 from lgw.theory.evidence import Identity, Inequality, Search, Step, Witness
+from lgw.theory.symbolic import LAMBDIFY_MODULES
 
 
 def _rational_point(symbols: Iterable[sp.Symbol], rng: random.Random,
@@ -82,7 +83,7 @@ def _float_at(expr: sp.Expr, point: Mapping[sp.Symbol, Any]) -> float:
     """``expr`` at ``point`` by plain floating point (lambdify with numpy): the independent
     route against which an exact SymPy evaluation is re-checked."""
     syms = sorted(expr.free_symbols, key=lambda s: s.name)
-    f = sp.lambdify(syms, expr, modules="numpy")
+    f = sp.lambdify(syms, expr, modules=LAMBDIFY_MODULES)
     with np.errstate(all="ignore"):
         return float(np.real_if_close(f(*(float(point[s]) for s in syms))))
 
@@ -253,7 +254,7 @@ def _arb_eval(e: sp.Basic, env: Mapping[sp.Symbol, Any]):
             return b ** int(x)
         return b ** _arb_eval(x, env)
     fns = {sp.exp: "exp", sp.log: "log", sp.gamma: "gamma", sp.sin: "sin", sp.cos: "cos",
-           sp.sqrt: "sqrt", sp.Abs: "__abs__"}
+           sp.Abs: "__abs__"}
     for cls, name in fns.items():
         if isinstance(e, cls):
             return getattr(_arb_eval(e.args[0], env), name)()
