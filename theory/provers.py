@@ -73,8 +73,13 @@ def prove_nonneg(expr: sp.Expr, statement: str, *, strict: bool = False) -> Step
     point is supplied by a search)."""
     e = sp.simplify(expr)
     ans = e.is_positive if strict else e.is_nonnegative
-    rel = sp.StrictGreaterThan(expr, 0) if strict else sp.GreaterThan(expr, 0)
+    rel = _relation(expr, strict)
     return Step(statement, Inequality(e, "sympy", answer=ans, strict=strict), rel)
+
+
+def _relation(expr: sp.Expr, strict: bool) -> sp.Basic:
+    """``expr > 0`` or ``expr >= 0``, unevaluated (kept for rendering)."""
+    return (sp.StrictGreaterThan if strict else sp.GreaterThan)(expr, 0, evaluate=False)
 
 
 # --- exact points ------------------------------------------------------------------------
@@ -128,7 +133,7 @@ def refute_nonneg_at(expr: sp.Expr, point: Mapping[sp.Symbol, Any], statement: s
     w = Witness({str(k): sp.sstr(sp.nsimplify(v)) for k, v in point.items()}, val,
                 "value at an exact point (SymPy, 30 digits)", val2,
                 "the same expression in floating point (numpy)") if val < 0 else None
-    rel = sp.StrictGreaterThan(expr, 0) if strict else sp.GreaterThan(expr, 0)
+    rel = _relation(expr, strict)
     return Step(statement, Inequality(e, "sympy", answer=ans, strict=strict, counter=w), rel)
 
 
@@ -310,7 +315,7 @@ def prove_arb(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[float, float]], state
         counter = Witness(pt, hi, "Arb enclosure at the point (upper end)",
                           recheck(pt) if recheck else None,
                           "the numpy implementation of the same quantity" if recheck else "")
-    rel = sp.StrictGreaterThan(expr, 0) if strict else sp.GreaterThan(expr, 0)
+    rel = _relation(expr, strict)
     return Step(statement, Inequality(expr, "arb", box={str(k): v for k, v in box.items()},
                                       lower=lo, strict=strict, counter=counter,
                                       certificate={"enclosure": [lo, hi], "splits": splits}),

@@ -8,7 +8,7 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from lgw.theory.claims import Claim, Step
+from lgw.theory.evidence import Claim, Step
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars import mss as M
 from lgw.theory.mars.bounds import axis_bounds, reaching_time, tf_min, tf_min_printed
@@ -52,28 +52,34 @@ def test_laws_agree_on_surface_numerically():
 
 def test_claims_invariants():
     from lgw.theory.mars.claims import all_claims
-    claims = all_claims()
+    claims = all_claims(default_gains())
     ids = [c.id for c in claims]
     assert len(ids) == len(set(ids))
     for c in claims:
         if c.verdict == "proved":
             assert c.steps and all(s.status == "proved" for s in c.steps), c.id
         if c.verdict == "refuted":
-            assert c.counterexample, c.id
+            assert c.counterexample is not None and c.counterexample.confirmed, c.id
     by = {c.id: c.verdict for c in claims}
     # The derivation's key findings (each a falsifiable statement about the law):
     assert by["V2dot-printed"] == "refuted" and by["V2dot-corrected"] == "proved"
-    assert by["T2-printed"] == "refuted" and by["T2-corrected"] == "proved"
-    assert by["T1"] == "proved" and by["exact-bound"] == "proved"
+    assert by["T2-printed"] == "refuted" and by["T2-corrected"] == "proved-given"
+    assert by["T1"] == "proved-given" and by["exact-bound"] == "proved-given"
+    assert by["landing-time"] == "checked" and by["T3"] == "unproven"
+    assert by["theorem1"] == "refuted" and by["theta-effect"] == "refuted"
     for eq in ("(18)", "(26)", "(31)", "(40)", "(45)", "(32)", "(3)", "(6)", "Remark 1"):
         assert any(eq in c.equations for c in claims), eq
 
 
-def test_proved_requires_proved_steps():
-    with pytest.raises(ValueError):
-        Claim("x", "(0)", "t", "p", "d", [Step("s", "m", "checked")], "proved", "e")
-    with pytest.raises(ValueError):
-        Claim("x", "(0)", "t", "p", "d", [Step("s", "m", "refuted")], "refuted", "e")
+def test_no_status_string_can_be_passed():
+    """A step's status comes only from evidence: a bare string is refused, and a Claim has no
+    verdict argument (its verdict is computed)."""
+    with pytest.raises(TypeError):
+        Step("s", "proved")
+    with pytest.raises(TypeError):
+        Claim("x", "(0)", "t", "p", "d", ["proved"])
+    with pytest.raises(TypeError):
+        Claim("x", "(0)", "t", "p", "d", [], verdict="proved")
 
 
 def test_printed_law_t2_counterexample_reproduces():

@@ -789,6 +789,30 @@ def remark2_claim() -> Claim:
                  "here; see thrust-table1@gains).", steps)
 
 
+@cache
+def theta_effect_claim() -> Claim:
+    """After (45): 'a large value of the disturbance upper bound a_pMAX leads to a wide
+    neighborhood; large values of theta1 and theta2 shrink the neighborhood size, but increase
+    the convergence time'.  Judged on (39) and (40) (the s1 ones behave alike)."""
+    M39 = (amax / ((1 - th1) * a1)) ** (1 / g1)
+    T40 = 1 / (a1 * th1 * (1 - g1) * 2 ** ((g1 - 1) / 2))  # the g1 term of (40)
+    pt = {amax: 20, a1: 1, g1: sp.Rational(1, 2), th1: sp.Rational(1, 5)}
+    om = sp.Symbol("omega", positive=True)  # 1 - theta1
+    steps = [prove_nonneg(sp.diff(M39.subs(th1, 1 - om), amax),
+                          "(39) grows with a_pMAX (its derivative is >= 0)"),
+             refute_nonneg_at(-sp.diff(M39, th1), pt,
+                              "(39) shrinks as theta1 grows: d(39)/d theta1 <= 0"),
+             refute_nonneg_at(sp.diff(T40, th1), pt,
+                              "(40) grows with theta1: d(40)/d theta1 >= 0")]
+    return Claim("theta-effect", "(31), (32), (39), (40), text after (45)",
+                 "Effect of a_pMAX, theta1, theta2 on the neighbourhoods and times",
+                 "a large a_pMAX widens the neighbourhood; large theta1, theta2 shrink the "
+                 "neighbourhood but increase the convergence time",
+                 "Backwards for theta: the neighbourhoods (39), (31) grow with theta (the factor "
+                 "1/(1-theta)) and the times (40), (45) fall with it (the factor 1/theta).  The "
+                 "a_pMAX statement holds.", steps)
+
+
 # --- Claims judged for a gain set -----------------------------------------------------------
 
 def _point_box(vals: dict) -> dict:
@@ -1014,7 +1038,7 @@ def general_claims() -> list[Claim]:
             bounded_command_claim("corrected"), hypothesis1_claim(),
             v2dot_disturbed_claim("printed"), v2dot_disturbed_claim("corrected"),
             s2_neighborhood_claim(), t2_practical_claim(), s1_neighborhood_claim(),
-            t1_practical_claim(), t3_claim(), paper_numbers_claim()]
+            t1_practical_claim(), t3_claim(), theta_effect_claim(), paper_numbers_claim()]
 
 
 def all_claims(gains=None) -> list[Claim]:
