@@ -279,7 +279,7 @@ def theorem1() -> Claim:
         < 1e-14 else None,
         "scipy brentq on sqrt(x) + x^2 - 1 over [0, 1]; agrees with the exact root to 1e-12",
         domain={"x(0)": "(0, oo)"})
-    return Claim("theorem1", "(4)-(9)", "Theorem 1: practical fixed-time stability",
+    return Claim("theorem1", "(4)-(6), (7)-(9)", "Theorem 1: practical fixed-time stability",
                  "V' <= -(aV^p+bV^g)^k + eta => the origin is fixed-time stable, V reaches "
                  "(5) within (6)",
                  "V reaches the set (5) within (6) and stays there (proved, given the comparison "

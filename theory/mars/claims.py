@@ -339,7 +339,8 @@ def t2_claim(law: str) -> Claim:
                      "surface, corrected law", paper,
                      "Holds for the corrected law; least upper bound T2* = Gamma(m)Gamma(1-m)/"
                      "(alpha1 (g2-g1)) (alpha1/alpha2)^m, m = (1-g1)/(g2-g1).", steps, law=law)
-    steps = [*_inherit(v2dot_claim("printed")), _t2_printed_witness()]
+    # the trajectory witness first: it is the claim's counterexample (Claim.counterexample)
+    steps = [_t2_printed_witness(), *_inherit(v2dot_claim("printed"))]
     return Claim("T2-printed", "(26)", "Theorem 3: fixed-time convergence of the second surface, "
                  "printed law (25)", paper,
                  "False for the printed law: s2 is still far from 0 at T2.", steps, law=law)
