@@ -98,10 +98,26 @@ def evidence_supports(ev: Evidence, status: str) -> str | None:
     return f"unknown status {status}"
 
 
+_WEAKEST_FIRST = ("refuted", "unproven", "checked", "cited", "proved")
+_VERDICT_OF = {"refuted": "refuted", "unproven": "unproven", "checked": "checked",
+               "cited": "proved-given", "proved": "proved"}
+
+
+def expected_verdict(steps) -> str:
+    """The combination rule written again here (independent of evidence.combine): a
+    conclusion that needs every step is as weak as its weakest step; no step, unproven."""
+    st = {s.status for s in steps}
+    for s in _WEAKEST_FIRST:
+        if s in st:
+            return _VERDICT_OF[s]
+    return "unproven"
+
+
 def check_claim(c: Claim) -> list[str]:
     problems = []
-    if c.verdict != combine(c.steps):
-        problems.append(f"verdict {c.verdict} is not the combination {combine(c.steps)}")
+    if c.verdict != expected_verdict(c.steps) or c.verdict != combine(c.steps):
+        problems.append(f"verdict {c.verdict} is not the combination "
+                        f"{expected_verdict(c.steps)}")
     if not c.steps:
         problems.append("no steps")
     for s in walk(c.steps + c.remarks):
