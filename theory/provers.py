@@ -201,7 +201,11 @@ def prove_z3(goal: sp.Basic, hypotheses: Iterable[sp.Basic], statement: str, *,
     s.add(*zh)
     s.add(z3.Not(zg))
     ans = str(s.check())
-    query = s.sexpr()
+    # the SMT-LIB query, written from the assertions (s.sexpr() also prints solver state
+    # that depends on earlier z3 calls in the process, which would make reports unstable)
+    query = "\n".join([f"(declare-fun {sym.name} () Real)"
+                       for sym in sorted(env, key=lambda q: q.name)]
+                      + [f"(assert {a.sexpr()})" for a in s.assertions()] + ["(check-sat)"])
     counter = None
     margin_expr = None  # the goal as "margin >= 0"
     if isinstance(goal, sp.GreaterThan | sp.StrictGreaterThan):

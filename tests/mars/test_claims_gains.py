@@ -50,6 +50,12 @@ def test_gain_dependent_verdicts_differ_between_two_gain_sets():
     # nudge a_max just below 20 sqrt 3: the verdict follows
     g_c = gains_from_toml_text(part1_gains_toml(a_max=34.6))
     assert _verdicts(gain_set_claims(g_c))["practical-hypotheses@gains"] == "refuted"
+    # the claim names the gains that would reproduce the printed numbers: for g_b, its own
+    from lgw.theory.mars.claims import reproducing_gains
+    rep = reproducing_gains(g_b)
+    assert rep["beta1_x"] == pytest.approx(g_b.beta1[0], rel=1e-12)
+    assert rep["alpha1_x"] == pytest.approx(g_b.alpha1[0], rel=1e-12)
+    assert reproducing_gains(g_a)["beta1_x"] is None  # beta2 = 4e-4 alone exceeds 74.578 s
     # the general claims do not depend on the gains
     assert _verdicts(all_claims(g_a))["T1"] == _verdicts(all_claims(g_b))["T1"]
 

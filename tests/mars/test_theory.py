@@ -8,8 +8,8 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from lgw.theory.evidence import Claim, Step
 from lgw.theory.errors import ParameterError
+from lgw.theory.evidence import Claim, Step
 from lgw.theory.mars import mss as M
 from lgw.theory.mars.bounds import axis_bounds, reaching_time, tf_min, tf_min_printed
 from lgw.theory.mars.gains import default_gains, gains_from_dict, gains_from_toml_text

@@ -874,13 +874,33 @@ def _numbers_steps(g, keys: tuple[str, ...]) -> list[Step]:
     return steps
 
 
+def reproducing_gains(g) -> dict[str, float | None]:
+    """Per axis, the beta1 (alpha1) that makes (18) (26) equal the printed 74.5780 s
+    (30.8217 s) with this gain set's other gains and exponents: (18) is affine in 1/beta1, so
+    beta1 = 1/(c1 (T - 1/(beta2 c2))), c1 = (1-q1) 2^((q1-1)/2), c2 = (q2-1) 2^((q2-1)/2);
+    None when the beta2 term alone already exceeds the printed time."""
+    out: dict[str, float | None] = {}
+    for i in _distinct_axes(g):
+        ax = g.axis(i)
+        for name, (k2, e1_, e2_, T) in {
+                "beta1": ("beta2", "q1", "q2", PRINTED["T1 (18)"]),
+                "alpha1": ("alpha2", "g1", "g2", PRINTED["T2 (26)"])}.items():
+            c1 = (1 - ax[e1_]) * 2 ** ((ax[e1_] - 1) / 2)
+            c2 = (ax[e2_] - 1) * 2 ** ((ax[e2_] - 1) / 2)
+            rest = T - 1 / (ax[k2] * c2)
+            out[f"{name}_{'xyz'[i]}"] = 1 / (c1 * rest) if rest > 0 else None
+    return out
+
+
 def paper_numbers_gain_claims(g) -> list[Claim]:
     part1 = _numbers_steps(g, ("T1 (18)", "T2 (26)"))
     c1 = Claim("paper-numbers-part1@gains", "(18), (26), Part 1",
                "Do these gains reproduce Part 1's printed bounds?",
                "T1 <= 74.5780 s (18), T2 <= 30.8217 s (26)",
                "(18) and (26) evaluated for the gain set by Arb interval arithmetic and compared "
-               "with the printed numbers to their rounding.", part1, scope="gain-set")
+               "with the printed numbers to their rounding.  Numbers: the beta1, alpha1 that "
+               "would reproduce them with this set's other gains and exponents.", part1,
+               scope="gain-set", numbers={"reproducing_gains": reproducing_gains(g)})
     if g.disturbance is None:
         part2 = [Step("the Part 2 numbers need a_max, theta1, theta2",
                       Unproven("the gain file has no [disturbance] table"))]
@@ -944,8 +964,10 @@ def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
         f"|F_i(t)| <= {THRUST_MAX_AXIS:.0f} N on every axis along the Table I flight, {law} law",
         margin, pts,
         domain={"scenario": "Table I r0, v0, m0 = 1905 kg", "t": [0.0, t_end],
-                "grid": f"{n_out} points per axis", "a_m": "0 (cancelled; shifts |a| by "
-                "< 0.2 m/s^2 under (12))"},
+                "grid": f"{n_out} points per axis",
+                "a_m": "0 in the command (the laws cancel a_m, so r and v do not depend on "
+                       "it; the command shifts by -a_m, ~0.03 m/s^2 at 100 m/s, 1.5 km with "
+                       "the simulator's physical drag)"},
         method="reduced per-axis closed loop (LSODA 1e-10, lgw.theory.mars.reduced), margin "
                "F_max - m0 |a_i(t)| over the time grid",
         recheck=recheck, recheck_method="surface-coordinate integration and the SymPy law at "
