@@ -927,13 +927,14 @@ def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
     from lgw.theory.mars.parameters import M_DRY
 
     f = M.law_numeric(law)
-    pts, states = [], {}
+    pts, states, failed = [], {}, {}
     for i in range(3):
         ax = g.axis(i)
         args = [ax[k] for k in ("beta1", "beta2", "alpha1", "alpha2", "q1", "q2", "g1", "g2")]
         try:
             tr = trajectory(law, ax, float(R0[i]), float(V0[i]), t_end, n_out=n_out)
-        except RuntimeError:
+        except RuntimeError as e:  # stated in the domain: that axis is not searched
+            failed["xyz"[i]] = str(e)
             continue
         with np.errstate(all="ignore"):
             acc = f(tr["r"], tr["v"], float(G_MARS[i]), 0.0, *args)
@@ -941,6 +942,10 @@ def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
         for j in range(len(tr["t"])):
             pts.append({"axis": "xyz"[i], "t": float(tr["t"][j]), "r": float(tr["r"][j]),
                         "v": float(tr["v"][j]), "a": float(acc[j])})
+
+    if not pts:
+        return Step(f"|F_i(t)| <= {THRUST_MAX_AXIS:.0f} N along the Table I flight, {law} law",
+                    Unproven(f"the reference integration failed on every axis: {failed}"))
 
     def margin(pt):
         a_ = pt["a"]
@@ -967,7 +972,9 @@ def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
                 "grid": f"{n_out} points per axis",
                 "a_m": "0 in the command (the laws cancel a_m, so r and v do not depend on "
                        "it; the command shifts by -a_m, ~0.03 m/s^2 at 100 m/s, 1.5 km with "
-                       "the simulator's physical drag)"},
+                       "the simulator's physical drag)",
+                "axes": [a for a in "xyz" if a not in failed],
+                **({"integration failed": failed} if failed else {})},
         method="reduced per-axis closed loop (LSODA 1e-10, lgw.theory.mars.reduced), margin "
                "F_max - m0 |a_i(t)| over the time grid",
         recheck=recheck, recheck_method="surface-coordinate integration and the SymPy law at "
