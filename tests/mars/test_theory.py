@@ -153,3 +153,25 @@ def test_tf_min_is_a_lower_bound_and_printed_fails():
         vz += (a_max - 3.7114) * dt
         t_stop += dt
     assert t_lb[2] == pytest.approx(max(t_pos, t_stop), rel=1e-3)
+
+
+@given(a1=st.floats(1e-3, 10), a2=st.floats(1e-5, 1), g1=st.floats(0.05, 0.95),
+       g2=st.floats(1.05, 3), amax=st.floats(0.1, 50), th=st.floats(0.01, 0.99),
+       u=st.floats(0, 10))
+def test_neighbourhood_function_meets_the_proved_inequality(a1, a2, g1, g2, amax, th, u):
+    """Claim s2-neighborhood proves (z3 + SymPy) that beyond M = (39) the bracket
+    (1-theta)(alpha1 x^g1 + alpha2 x^g2) - a_max is >= 0.  The numeric function the CLI, the
+    tuner and the report call (bounds.neighborhood) must give an M where that holds."""
+    from lgw.theory.mars.bounds import neighborhood
+    m = float(neighborhood(amax, a1, a2, g1, g2, th))
+    x = m * (1 + u)
+    bracket = (1 - th) * (a1 * x**g1 + a2 * x**g2) - amax
+    assert bracket >= -1e-9 * amax
+
+
+def test_theorem1_equilibrium_solves_its_equation():
+    from lgw.theory.settling_proofs import theorem1
+    w = theorem1().counterexample
+    x = w["x(0) = x*"]
+    assert math.sqrt(x) + x * x == pytest.approx(1.0, abs=1e-14)
+    assert abs(x - 0.5698) > 0.04  # the value the previous report typed in was not the root
