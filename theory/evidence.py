@@ -76,6 +76,10 @@ class Witness:
     recheck_method: str = ""
     seed: int | None = None
 
+    def __getitem__(self, key: str) -> Any:
+        """The point's coordinate ``key`` (a witness reads like the case it describes)."""
+        return self.point[key]
+
     @property
     def confirmed(self) -> bool:
         return (self.margin < 0 and self.rechecked_margin is not None

@@ -1,11 +1,13 @@
 """Seed 000 behaves as before the move into the lgw house (issue 12).
 
-The files in golden/ were written by the pre-move tree (commit 8ad8a6d) with the commands named
-below.  Reports compare byte for byte after mapping the module paths the move renamed (the
-report text names two modules); simulation records compare to 1e-12 relative (integrator
+The bounds and simulation files in golden/ were written by the pre-move tree (commit 8ad8a6d)
+with the commands named below; simulation records compare to 1e-12 relative (integrator
 arithmetic may be reordered by a refactor; any larger difference is a behaviour change).
-Deliberate changes to these outputs (later issues) re-make the golden files and say why in the
-commit that does.
+The report files (report_nocompare.md/.tex/.html/.claims.json) were re-made deliberately in
+issue 13, when every verdict became computed from evidence (new steps, evidence summaries,
+witness tables, scope sections, coverage table, gain-set claims, claims.json); they compare
+byte for byte.  Deliberate changes to these outputs re-make the golden files and say why in
+the commit that does.
 """
 
 from __future__ import annotations
@@ -19,21 +21,10 @@ from click.testing import CliRunner
 from lgw.tuning.cli import cli
 
 GOLDEN = Path(__file__).parent / "golden"
-# module paths renamed by the move, as the old report text spells them
-RENAMED = {"lgw.theory.mars.bounds": "theory.mars_bounds",
-           "lgw.theory.mars.reduced": "theory.reduced"}
-
-
 def _run(*args: str) -> str:
     res = CliRunner().invoke(cli, list(args), catch_exceptions=False)
     assert res.exit_code == 0, res.output
     return res.output
-
-
-def _old_names(text: str, ext: str) -> str:
-    for new, old in RENAMED.items():
-        text = text.replace(new, old.replace("_", "\\_") if ext == "tex" else old)
-    return text
 
 
 def test_bounds_json_same_bytes():
@@ -41,11 +32,13 @@ def test_bounds_json_same_bytes():
 
 
 def test_report_same_bytes(tmp_path):
-    """``lgw report mars --no-compare --out DIR`` (golden: the same command before the move)."""
+    """``lgw report mars --no-compare --out DIR`` (golden: the same command at issue 13)."""
     _run("report", "mars", "--no-compare", "--out", str(tmp_path))
-    for ext in ("md", "tex", "html"):
-        new = _old_names((tmp_path / f"report.{ext}").read_text(), ext)
-        assert new == (GOLDEN / f"report_nocompare.{ext}").read_text(), ext
+    for name in ("report.md", "report.tex", "report.html", "claims.json"):
+        new = (tmp_path / name).read_text()
+        golden = "report_nocompare." + (name.split(".")[1] if name.startswith("report")
+                                        else "claims.json")
+        assert new == (GOLDEN / golden).read_text(), name
 
 
 def _close(a, b, path="") -> None:

@@ -8,8 +8,8 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from lgw.theory.claims import Claim, Step
 from lgw.theory.errors import ParameterError
+from lgw.theory.evidence import Claim, Step
 from lgw.theory.mars import mss as M
 from lgw.theory.mars.bounds import axis_bounds, reaching_time, tf_min, tf_min_printed
 from lgw.theory.mars.gains import default_gains, gains_from_dict, gains_from_toml_text
@@ -52,28 +52,34 @@ def test_laws_agree_on_surface_numerically():
 
 def test_claims_invariants():
     from lgw.theory.mars.claims import all_claims
-    claims = all_claims()
+    claims = all_claims(default_gains())
     ids = [c.id for c in claims]
     assert len(ids) == len(set(ids))
     for c in claims:
         if c.verdict == "proved":
             assert c.steps and all(s.status == "proved" for s in c.steps), c.id
         if c.verdict == "refuted":
-            assert c.counterexample, c.id
+            assert c.counterexample is not None and c.counterexample.confirmed, c.id
     by = {c.id: c.verdict for c in claims}
     # The derivation's key findings (each a falsifiable statement about the law):
     assert by["V2dot-printed"] == "refuted" and by["V2dot-corrected"] == "proved"
-    assert by["T2-printed"] == "refuted" and by["T2-corrected"] == "proved"
-    assert by["T1"] == "proved" and by["exact-bound"] == "proved"
+    assert by["T2-printed"] == "refuted" and by["T2-corrected"] == "proved-given"
+    assert by["T1"] == "proved-given" and by["exact-bound"] == "proved-given"
+    assert by["landing-time"] == "checked" and by["T3"] == "unproven"
+    assert by["theorem1"] == "refuted" and by["theta-effect"] == "refuted"
     for eq in ("(18)", "(26)", "(31)", "(40)", "(45)", "(32)", "(3)", "(6)", "Remark 1"):
         assert any(eq in c.equations for c in claims), eq
 
 
-def test_proved_requires_proved_steps():
-    with pytest.raises(ValueError):
-        Claim("x", "(0)", "t", "p", "d", [Step("s", "m", "checked")], "proved", "e")
-    with pytest.raises(ValueError):
-        Claim("x", "(0)", "t", "p", "d", [Step("s", "m", "refuted")], "refuted", "e")
+def test_no_status_string_can_be_passed():
+    """A step's status comes only from evidence: a bare string is refused, and a Claim has no
+    verdict argument (its verdict is computed)."""
+    with pytest.raises(TypeError):
+        Step("s", "proved")
+    with pytest.raises(TypeError):
+        Claim("x", "(0)", "t", "p", "d", ["proved"])
+    with pytest.raises(TypeError):
+        Claim("x", "(0)", "t", "p", "d", [], verdict="proved")
 
 
 def test_printed_law_t2_counterexample_reproduces():
@@ -147,3 +153,25 @@ def test_tf_min_is_a_lower_bound_and_printed_fails():
         vz += (a_max - 3.7114) * dt
         t_stop += dt
     assert t_lb[2] == pytest.approx(max(t_pos, t_stop), rel=1e-3)
+
+
+@given(a1=st.floats(1e-3, 10), a2=st.floats(1e-5, 1), g1=st.floats(0.05, 0.95),
+       g2=st.floats(1.05, 3), amax=st.floats(0.1, 50), th=st.floats(0.01, 0.99),
+       u=st.floats(0, 10))
+def test_neighbourhood_function_meets_the_proved_inequality(a1, a2, g1, g2, amax, th, u):
+    """Claim s2-neighborhood proves (z3 + SymPy) that beyond M = (39) the bracket
+    (1-theta)(alpha1 x^g1 + alpha2 x^g2) - a_max is >= 0.  The numeric function the CLI, the
+    tuner and the report call (bounds.neighborhood) must give an M where that holds."""
+    from lgw.theory.mars.bounds import neighborhood
+    m = float(neighborhood(amax, a1, a2, g1, g2, th))
+    x = m * (1 + u)
+    bracket = (1 - th) * (a1 * x**g1 + a2 * x**g2) - amax
+    assert bracket >= -1e-9 * amax
+
+
+def test_theorem1_equilibrium_solves_its_equation():
+    from lgw.theory.settling_proofs import theorem1
+    w = theorem1().counterexample
+    x = w["x(0) = x*"]
+    assert math.sqrt(x) + x * x == pytest.approx(1.0, abs=1e-14)
+    assert abs(x - 0.5698) > 0.04  # the value the previous report typed in was not the root

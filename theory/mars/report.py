@@ -1,4 +1,7 @@
-"""Seed 000's report: what the shared renderer (``lgw.theory.report``) puts around the claims."""
+"""Seed 000's report: what the shared renderer (``lgw.theory.report``) puts around the claims.
+
+The claims are ``lgw.theory.mars.claims.all_claims(gains)`` and the coverage table is
+``lgw.theory.mars.coverage.coverage()``; both are passed to the renderer by the CLI."""
 
 from __future__ import annotations
 
@@ -16,6 +19,10 @@ REFERENCES = (
     "systems, IJRNC 29(12), 2019 (the least upper bound T*).",
     "B. Acikmese, S. R. Ploen, Convex programming approach to powered descent guidance for "
     "Mars landing, JGCD 30(5), 2007 (the Table I lander, Isp = 225 s, dry mass).",
+    "H. K. Khalil, Nonlinear Systems, 3rd ed., Prentice Hall, 2002 (comparison lemma, Lemma "
+    "3.4; positive invariance, Sec. 4.8): cited by the claims' proofs.",
+    "W. Rudin, Principles of Mathematical Analysis, 3rd ed., McGraw-Hill, 1976 (monotonicity "
+    "of the integral, Thm 6.12; Taylor's theorem, Thm 5.15): cited by the claims' proofs.",
 )
 
 BOUND_LABELS = [
