@@ -117,8 +117,8 @@ def test_numeric_options_say_their_unit_or_range():
             continue
         for p in cmd.params:
             if isinstance(p, click.Option) and not p.hidden:
-                assert not isinstance(p.type, click.types.FloatParamType | click.types.IntParamType), \
-                    (verb, p.opts, "use lgw.tuning.options.Number / Integer")
+                plain = click.types.FloatParamType | click.types.IntParamType
+                assert not isinstance(p.type, plain), (verb, p.opts, "use Number / Integer")
                 if isinstance(p.type, Number | Integer):
                     assert p.type.valid.startswith("must be")
 
