@@ -49,7 +49,7 @@ def assert_one_error(r: Run) -> None:
     assert r.code == 2, (r.code, r.stderr)
     lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("error: "), r.stderr
-    assert "Traceback" not in r.stderr and "Error: " not in r.stderr
+    assert "Traceback" not in r.stderr and "Usage:" not in r.stderr
 
 
 def _commands() -> list[tuple[str, str, click.Command]]:
