@@ -14,6 +14,7 @@ import sys
 from dataclasses import dataclass
 
 import click
+import numpy as np
 import pytest
 from click.testing import CliRunner
 from lgw.tuning.cli import VERBS, cli, main, systems_for
@@ -200,3 +201,51 @@ def test_verify_headers_untruncated_in_a_pipe(tmp_path):
 def test_cli_group_builds():
     assert isinstance(cli, click.Group) and re.match(r"\d", importlib.import_module(
         "lgw").__version__)
+
+
+def _fake_result(n: int):
+    """A BatchResult of n cases without flying (numpy only): case i lands at t = i s except
+    cases 7 (non-finite) and 40 (out of propellant)."""
+    from lgw.sim.mars.batch import ARRAY_FIELDS, BatchResult
+
+    vec = {"r_land", "v_land", "peak_thrust", "peak_thrust_unsat", "t_s1", "t_s2",
+           "t_s1_last_exit", "t_s2_last_exit"}
+    kw = {}
+    for k in ARRAY_FIELDS:
+        shape = (n, 3) if k in vec else (n, 7) if k == "y_end" else (n,)
+        kw[k] = np.zeros(shape, bool if k in ("landed", "ground_contact", "nonfinite",
+                                               "fuel_exhausted", "step_limit") else float)
+    kw["steps"] = np.ones(n, np.int64)
+    kw["landed"][:] = True
+    kw["landing_time"] = np.arange(n, dtype=float)
+    for i, flag in ((7, "nonfinite"), (40, "fuel_exhausted")):
+        kw["landed"][i] = False
+        kw[flag][i] = True
+        kw["landing_time"][i] = np.nan
+    return BatchResult(eps=0.05, dt=0.05, r0=np.zeros((n, 3)), v0=np.zeros((n, 3)),
+                       m0=np.full(n, 1905.0), info={}, **kw)
+
+
+def test_per_case_table_shows_flagged_then_worst_and_counts_the_hidden():
+    from lgw.tuning.mars.cmd_simulate import (
+        PER_CASE_ROWS,
+        _print_cases,
+        case_flags,
+        select_cases,
+        shown_cases,
+    )
+    from rich.console import Console
+
+    res = _fake_result(20_000)
+    idx = shown_cases(res)
+    assert len(idx) == PER_CASE_ROWS
+    assert idx[:2].tolist() == [7, 40]  # flagged first
+    assert idx[2:5].tolist() == [19_999, 19_998, 19_997]  # then the latest landings
+    recs = select_cases(res, idx)
+    assert [r["case"] for r in recs[:3]] == [7, 40, 19_999]
+    con = Console(width=400, record=True)
+    _print_cases(recs, len(res), int(case_flags(res).sum()), con)
+    text = con.export_text()
+    assert f"{20_000 - PER_CASE_ROWS} more cases not shown" in text
+    assert f"{PER_CASE_ROWS} of 20000 shown" in text and "2 flagged" in text
+    assert "NONFINITE" in text and "DRY" in text
