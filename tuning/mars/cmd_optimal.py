@@ -51,12 +51,13 @@ def _replays(sol: Any, drag: str) -> list[dict[str, Any]]:
 @click.option("--tf", type=Number(0, 1e5, lo_open=True, unit="s"), default=None,
               help="flight time, s [default: 30, seed 000 Part 1]")
 @click.option("--min-tf", is_flag=True, help="find the shortest feasible flight time instead")
-@click.option("--thrust-max", type=Number(0, lo_open=True, unit="N"), default=THRUST_MAX_AXIS,
+@click.option("--thrust-max", type=Number(0, 1e9, lo_open=True, unit="N"),
+              default=THRUST_MAX_AXIS,
               show_default=True,
               help="thrust upper bound, N (per axis or on the norm, see --limit)")
 @click.option("--limit", type=choice(("axis", "norm")), default="axis", show_default=True,
               help="axis: |F_i| <= thrust-max (seed 000 Part 3); norm: ||F|| <= thrust-max")
-@click.option("--thrust-min", type=Number(0, unit="N"), default=None,
+@click.option("--thrust-min", type=Number(0, 1e9, unit="N"), default=None,
               help="lower bound on ||F||, N (needs the lossless convexification) [default: "
                    "none, seed 000 states no minimum]")
 @click.option("--n", "n", type=Integer(N_RANGE[0], N_RANGE[1], "ZOH steps"), default=80,

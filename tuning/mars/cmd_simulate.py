@@ -76,6 +76,7 @@ PER_CASE_ROWS = 50  # rows of the per-case table printed to the terminal (all go
 DISPERSIONS = ("table2", "table3")
 MAX_CASES = 100_000_000  # --cases: a campaign beyond this does not fit the per-case arrays
 A_MAX_PAPER = 20.0  # m/s^2, seed 000 (47): the default disturbance amplitude
+MAX_RK4_STEPS = 10**8  # per case: t_max/dt beyond this would run for hours (a mistyped --dt)
 
 
 def fig6(gains: Gains, *, law: str = "corrected", dt: float | None = None,
@@ -335,6 +336,13 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
             raise ParameterError("--method", method, "cannot be combined with --reference "
                                  "(the reference is solve_ivp LSODA)")
         opts.update(method=method, rtol=rtol, atol=atol, max_step=max_step)
+    if method == "rk4" and not reference:
+        steps = t_max / (DT_DEFAULT if dt is None else dt)
+        if steps > MAX_RK4_STEPS:
+            name, val = ("--t-max", t_max) if dt is None else ("--dt", dt)
+            raise ParameterError(name, val, f"gives t_max/dt = {steps:.3g} RK4 steps per case "
+                                 f"(dt = {DT_DEFAULT if dt is None else dt} s); at most "
+                                 f"{MAX_RK4_STEPS:.0e} (raise --dt or lower --t-max)")
     if reference and (workers is not None or scheduler is not None):
         raise ParameterError("--reference", True, "runs in-process; it cannot be combined "
                              "with --workers or --scheduler")

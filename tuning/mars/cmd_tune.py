@@ -31,6 +31,10 @@ from lgw.tuning.mars.gains_file import certificate, write_gains
 from lgw.tuning.options import Number, choice, seed_option
 
 EXIT_INFEASIBLE = 3
+# Upper ends of the request, on the scale of a Mars powered descent (km, minutes, kN), so that the
+# geometric program and the simulated check stay well scaled: larger values are typing errors.
+TF_MAX = 1e4  # s
+THRUST_CAP = 1e9  # N
 
 
 def _fmt_state(x: np.ndarray) -> str:
@@ -58,19 +62,19 @@ def whole_box_note(env: Envelope, forced_fraction: float, thrust_max: float,
 
 
 @click.command("mars")
-@click.option("--tf", type=Number(0, lo_open=True, unit="s"), required=True,
+@click.option("--tf", type=Number(0, TF_MAX, lo_open=True, unit="s"), required=True,
               help="required landing-time bound, s")
-@click.option("--thrust-max", type=Number(0, lo_open=True, unit="N"), required=True,
+@click.option("--thrust-max", type=Number(0, THRUST_CAP, lo_open=True, unit="N"), required=True,
               help="thrust limit, N (per axis or on the norm, see --limit)")
 @click.option("--limit", type=choice(LIMITS), default="axis", show_default=True,
               help="axis: |F_i| <= thrust-max; norm: ||F|| <= thrust-max")
 @click.option("--envelope", "envelope", default="table3+table2", show_default=True,
               help="initial states to cover: table3+table2 | table3 | table2 | a CSV file of "
                    "states (rx, ry, rz, vx, vy, vz, m; m, m/s, kg)")
-@click.option("--a-max", type=Number(0, lo_open=True, unit="m/s^2"), default=None,
+@click.option("--a-max", type=Number(0, 1e3, lo_open=True, unit="m/s^2"), default=None,
               help="disturbance bound |a_p,i|, m/s^2 [default: no disturbance; needs "
                    "--neighborhood]")
-@click.option("--neighborhood", type=Number(0, lo_open=True, unit="m"), default=None,
+@click.option("--neighborhood", type=Number(0, 1e6, lo_open=True, unit="m"), default=None,
               help="required landing neighbourhood (31) under --a-max, m [default: none]")
 @click.option("--theta1", type=Number(0, 1, lo_open=True, hi_open=True), default=THETA1_PAPER,
               show_default=True, help="Theorem 4 splitting constant of s2 (39), in (0, 1)")
@@ -80,7 +84,7 @@ def whole_box_note(env: Envelope, forced_fraction: float, thrust_max: float,
               help="landing-time bound to meet: exact (T1* + T2*) or polyakov ((18) + (26))")
 @click.option("--objective", type=choice(OBJECTIVES), default="peak-thrust", show_default=True,
               help="what the gains minimize over the envelope")
-@click.option("--keep-out", type=Number(0, unit="m"), default=50.0, show_default=True,
+@click.option("--keep-out", type=Number(0, 1e5, unit="m"), default=50.0, show_default=True,
               help="d_keep: states closer than this to the target on an axis are not covered, m")
 @click.option("--brake-fraction", type=Number(0, 1, lo_open=True), default=0.5,
               show_default=True,
