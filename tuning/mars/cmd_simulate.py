@@ -175,13 +175,12 @@ def _print_cases(recs: list[dict[str, Any]], total: int, flagged: int,
                  console: Console) -> None:
     t = Table(title=f"per case: {len(recs)} of {total} shown, flagged cases first ({flagged} "
                     "flagged), then the latest landings (peak thrust after the limit; t_s2: "
-                    "last axis to enter the band)")
+                    "first time |s2_i| <= eps per axis, - if not before the case ended)")
     for c in ("case", "landed", "t_land s", "|r| m", "fuel kg", "peak x/y/z kN", "t_sat s",
-              "t_s2 s", "flags"):
+              "t_s2 x/y/z s", "flags"):
         t.add_column(c, justify="right")
     for rec in recs:
         rl = rec["r_land"]
-        ts2 = [x for x in rec["t_s2"] if x is not None]
         flags = " ".join(f for f, on in (("NONFINITE", rec["nonfinite"]),
                                          ("GROUND", rec["ground_contact"]),
                                          ("DRY", rec["fuel_exhausted"] and not rec["landed"]),
@@ -193,7 +192,7 @@ def _print_cases(recs: list[dict[str, Any]], total: int, flagged: int,
                   _fmt(rec["landing_time"], ".2f"),
                   _fmt(math.hypot(*rl) if None not in rl else None, ".3f"),
                   _fmt(rec["fuel"], ".1f"), peak, _fmt(rec["time_saturated"], ".2f"),
-                  _fmt(max(ts2) if len(ts2) == 3 else None, ".2f"), flags)
+                  "/".join(_fmt(x, ".2f") for x in rec["t_s2"]), flags)
     console.print(t)
     if total > len(recs):
         console.print(f"{total - len(recs)} more cases not shown (all {total} in --json and "
