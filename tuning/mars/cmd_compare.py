@@ -14,8 +14,8 @@ from lgw.tuning.io import (
     json_document,
     make_out_dir,
 )
+from lgw.tuning.mars.compare import TUNED_DEFAULT, format_table, run_comparison, tuned_sets
 from lgw.tuning.mars.compare import figure as comparison_figure
-from lgw.tuning.mars.compare import format_table, run_comparison, tuned_sets
 from lgw.tuning.mars.gains_file import load_tuned
 from lgw.tuning.mars.options import resolve_gains
 from lgw.tuning.options import Integer, Number, choice, gains_option, out_dir_option
@@ -63,7 +63,11 @@ def command(gains_path: Path | None, tuned_paths: tuple[Path, ...],
                                        gains_name=name)
     except RuntimeError as exc:
         raise click.ClickException(str(exc)) from exc
-    text = json_document({"command": "compare mars", **gains.to_dict(), **report}, indent=1)
+    settings = {"dist_amplitude": amplitude, "drag": drag, "n": n,
+                "tuned": [str(p) for p in tuned_paths] or [str(TUNED_DEFAULT)]}
+    doc = {"command": "compare mars", **gains.to_dict(), "settings": settings,
+           "tuned_gains": [{"label": lab, **tg.to_dict()} for lab, tg in tuned], **report}
+    text = json_document(doc, indent=1)
     if out_dir is not None:
         make_out_dir(out_dir)
         with atomic_writer(out_dir / "compare.png", "wb") as f:
