@@ -53,8 +53,11 @@ def reaching_time(s0: np.ndarray, gain1, gain2, e1: float, e2: float) -> np.ndar
 def neighborhood(eta, gain1, gain2, e1: float, e2: float, theta: float) -> np.ndarray:
     """Seed 000, eqs. (38)/(39) and (44)/(31): |s| <= min{(eta/((1-theta) gain1))^(1/e1),
     (eta/((1-theta) gain2))^(1/e2)} for V' <= -gain1|s|^(e1+1) - gain2|s|^(e2+1) + eta|s|."""
-    return np.minimum((eta / ((1 - theta) * gain1)) ** (1 / e1),
-                      (eta / ((1 - theta) * gain2)) ** (1 / e2))
+    # one candidate may overflow to inf at the edge of the accepted range (e.g. q1 = 1e-300):
+    # the minimum is then the other, finite one; check_evaluable rejects sets where both are
+    with np.errstate(over="ignore"):
+        return np.minimum((eta / ((1 - theta) * gain1)) ** (1 / e1),
+                          (eta / ((1 - theta) * gain2)) ** (1 / e2))
 
 
 def s2_bound(g: Gains) -> np.ndarray:
