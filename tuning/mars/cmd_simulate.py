@@ -297,6 +297,8 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
     if workers is not None and scheduler is not None:
         raise ParameterError("--workers", workers, "cannot be combined with --scheduler (the "
                              "scheduler's cluster decides the workers); give one of them")
+    if scheduler is not None and not fig6:
+        check_scheduler(scheduler, scheduler_timeout)  # fail fast, before any state is drawn
     con = console()
     if fig6:
         res6 = globals()["fig6"](gains, law=law, dt=dt, eps=eps, drag=drag)
@@ -345,8 +347,6 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
     if reference and (workers is not None or scheduler is not None):
         raise ParameterError("--reference", True, "runs in-process; it cannot be combined "
                              "with --workers or --scheduler")
-    if scheduler is not None:
-        check_scheduler(scheduler, scheduler_timeout)  # fail fast, before the campaign
     progress = len(r0) > 1000 and not as_json
     if reference:
         from lgw.sim.mars.reference import simulate_reference
