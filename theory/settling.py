@@ -25,10 +25,14 @@ from scipy import special
 
 
 def _check(a: ArrayLike, b: ArrayLike, p: float, g: float, k: float) -> None:
-    if np.any(np.asarray(a) <= 0):
-        raise ParameterError("a", a, "must be > 0")
-    if np.any(np.asarray(b) <= 0):
-        raise ParameterError("b", b, "must be > 0")
+    # range checks of the lemma's own symbols; a system's loader (e.g. lgw.theory.mars.gains)
+    # rejects user values first, naming the user's parameters, so these guard direct callers
+    if not np.all(np.isfinite(np.asarray(a, float))) or np.any(np.asarray(a) <= 0):
+        raise ParameterError("a", a, "must be finite and > 0")
+    if not np.all(np.isfinite(np.asarray(b, float))) or np.any(np.asarray(b) <= 0):
+        raise ParameterError("b", b, "must be finite and > 0")
+    if not all(np.isfinite(x) for x in (p, g, k)):
+        raise ParameterError("p, g, k", (p, g, k), "must be finite")
     if not k > 0:
         raise ParameterError("k", k, "must be > 0")
     if not (p > 0 and p * k < 1):

@@ -97,17 +97,35 @@ for _verb, _help in VERBS.items():
                               context_settings={"help_option_names": ["-h", "--help"]}))
 
 
-def main() -> None:
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def main(args: list[str] | None = None) -> None:
+    """Run ``lgw``: every invalid input (lgw's ParameterError and click's usage errors alike)
+    is one line ``error: ...`` on stderr and exit code 2, with no traceback."""
     try:
-        cli(standalone_mode=False)
+        rc = cli(args=args, standalone_mode=False)
     except ParameterError as e:
-        click.echo(f"error: {e}", err=True)
+        click.echo(f"error: {_one_line(e)}", err=True)
         sys.exit(2)
     except click.exceptions.Abort:
         click.echo("aborted", err=True)
         sys.exit(1)
+    except click.UsageError as e:  # includes BadParameter, NoSuchOption, MissingParameter
+        hint = ""
+        if e.ctx is not None:
+            hint = f" (see {e.ctx.command_path} --help)"
+        click.echo(f"error: {_one_line(e.format_message())}{hint}", err=True)
+        sys.exit(2)
     except click.ClickException as e:
-        e.show()
-        sys.exit(2 if isinstance(e, click.UsageError | click.BadParameter) else e.exit_code)
-    except SystemExit:
-        raise
+        click.echo(f"error: {_one_line(e.format_message())}", err=True)
+        sys.exit(e.exit_code)
+    except BrokenPipeError:  # `lgw ... | head`: the reader left; not an error of lgw
+        sys.stderr.close()
+        sys.exit(0)
+    except KeyboardInterrupt:
+        click.echo("interrupted", err=True)
+        sys.exit(130)
+    if isinstance(rc, int) and rc:
+        sys.exit(rc)

@@ -53,8 +53,11 @@ def reaching_time(s0: np.ndarray, gain1, gain2, e1: float, e2: float) -> np.ndar
 def neighborhood(eta, gain1, gain2, e1: float, e2: float, theta: float) -> np.ndarray:
     """Seed 000, eqs. (38)/(39) and (44)/(31): |s| <= min{(eta/((1-theta) gain1))^(1/e1),
     (eta/((1-theta) gain2))^(1/e2)} for V' <= -gain1|s|^(e1+1) - gain2|s|^(e2+1) + eta|s|."""
-    return np.minimum((eta / ((1 - theta) * gain1)) ** (1 / e1),
-                      (eta / ((1 - theta) * gain2)) ** (1 / e2))
+    # one candidate may overflow to inf at the edge of the accepted range (e.g. q1 = 1e-300):
+    # the minimum is then the other, finite one; check_evaluable rejects sets where both are
+    with np.errstate(over="ignore"):
+        return np.minimum((eta / ((1 - theta) * gain1)) ** (1 / e1),
+                          (eta / ((1 - theta) * gain2)) ** (1 / e2))
 
 
 def s2_bound(g: Gains) -> np.ndarray:
@@ -122,6 +125,59 @@ def axis_bounds(g: Gains) -> dict[str, dict[str, float]]:
         out["v_bound"] = g.beta1 * n**g.q1 + g.beta2 * n**g.q2 + m
         out["landing_time_bound_disturbed"] = out["T2_practical_exact"] + out["T1_practical_exact"]
     return {ax: {k: float(val[i]) for k, val in out.items()} for i, ax in enumerate(AXES)}
+
+
+# which of the user's parameters each bound depends on (for check_evaluable's error message)
+_S1 = "beta1, beta2, q1, q2"
+_S2 = "alpha1, alpha2, g1, g2"
+_DIST = "[disturbance] a_max, theta1, theta2"
+_DEPENDS = (
+    (("T1_polyakov", "T1_exact"), _S1, "T1 (18) and T1_exact scale as 1/beta1, 1/beta2"),
+    (("T2_polyakov", "T2_exact"), _S2, "T2 (26) and T2_exact scale as 1/alpha1, 1/alpha2"),
+    (("T_whole_paper", "landing_time_bound", "landing_time_bound_polyakov"), f"{_S1}, {_S2}",
+     "the landing-time bounds T1 + T2"),
+    (("s2_bound", "T2_practical", "T2_practical_exact"), f"{_S2}, {_DIST}",
+     "the neighbourhood (39) (a_max/((1 - theta1) alpha))^(1/g) and the time (40)"),
+    (("s1_bound", "T1_practical", "T1_practical_exact", "T3_paper", "v_bound",
+      "landing_time_bound_disturbed"), f"{_S1}, {_S2}, {_DIST}",
+     "the neighbourhood (31)/(44), v_bound and the times (45), (32)"),
+)
+
+
+def check_evaluable(g: Gains) -> None:
+    """Range check (issue 14): every bound of ``axis_bounds`` is a finite double for ``g``.
+
+    The gain hypotheses (``lgw.theory.mars.gains``) admit values for which the closed forms
+    overflow: T1* ~ 1/beta1 is inf for beta1 = 1e-308, the neighbourhood (39) raises
+    a_max/((1 - theta1) alpha1) to the power 1/g1.  Such a gain set is rejected here with a
+    ParameterError naming the user's parameters behind the first bound that is not finite,
+    instead of printing Infinity or raising OverflowError."""
+    try:
+        with np.errstate(all="ignore"):
+            b = axis_bounds(g)
+    except (OverflowError, ZeroDivisionError, ParameterError) as e:
+        raise ParameterError(f"{_S1}, {_S2}", _gain_values(g, _S1 + ", " + _S2),
+                             "the bounds (18), (26) cannot be evaluated in double precision "
+                             f"for these values ({type(e).__name__}: {e})") from None
+    for keys, names, what in _DEPENDS:
+        bad = [(ax, k) for ax in AXES for k in keys if k in b[ax]
+               and not (np.isfinite(b[ax][k]) and b[ax][k] >= 0)]
+        if bad:
+            ax, k = bad[0]
+            raise ParameterError(names, _gain_values(g, names),
+                                 f"the bound {k} on axis {ax} is {b[ax][k]!r}: {what}; the "
+                                 "values must keep every bound a finite double (< 1.8e308)")
+
+
+def _gain_values(g: Gains, names: str) -> dict[str, object]:
+    out: dict[str, object] = {}
+    for n in names.replace("[disturbance] ", "").split(", "):
+        if g.disturbance is not None and n in ("a_max", "theta1", "theta2"):
+            out[n] = getattr(g.disturbance, n)
+        elif hasattr(g, n):
+            v = getattr(g, n)
+            out[n] = [float(x) for x in v] if isinstance(v, np.ndarray) else v
+    return out
 
 
 def landing_time_bound(g: Gains, disturbed: bool = False) -> float:

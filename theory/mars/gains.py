@@ -6,6 +6,19 @@ The valid ranges are the hypotheses of the theorems they feed:
   a_max > 0, 0 < theta1, theta2 < 1        seed 000, Hypothesis 1 / Theorem 4
 Per-axis gains are a number (the same on x, y, z) or a list of three; exponents are scalars, as in
 the paper.  Parsing never evaluates user text: values must already be TOML numbers.
+
+Beyond the hypotheses, the closed forms must be evaluable in double precision (issue 14):
+  q1, g1 <= 1 - EXP_GAP and q2, g2 >= 1 + EXP_GAP: the bounds grow like 1/(1 - q1) and
+    1/(q2 - 1), and the exponent is known to 1e-16 absolute, so within EXP_GAP = 1e-9 of 1 the
+    bound would carry fewer than 7 correct digits (and one ulp from 1 the Lemma 2 route (18)/(26),
+    p = (q1 + 1)/2, rounds to exactly 1);
+  q2, g2 <= EXP_MAX = 2046: the route evaluates 2^((q2 + 1)/2), which overflows a double for
+    q2 >= 2047;
+  every bound of ``lgw.theory.mars.bounds.axis_bounds`` finite (< 1.8e308): checked by
+    ``lgw.theory.mars.bounds.check_evaluable``, which names the gains of the surface at fault
+    (e.g. beta1 = 1e-308 makes T1 ~ 1/beta1 overflow).
+Files are UTF-8 text (a UTF-8 byte-order mark is accepted); binary files, other encodings,
+duplicate keys and integers too large for a double are named errors.
 """
 
 from __future__ import annotations
@@ -22,15 +35,19 @@ from lgw.theory.errors import ParameterError
 AXIS_GAINS = ("beta1", "beta2", "alpha1", "alpha2")
 EXPONENTS = ("q1", "q2", "g1", "g2")
 DISTURBANCE_KEYS = ("a_max", "theta1", "theta2")
+EXP_GAP = 1e-9  # closest an exponent may come to 1 (see the module docstring)
+EXP_MAX = 2046.0  # largest q2, g2: 2^((q2 + 1)/2) overflows a double from q2 = 2047
+_LOW = f"must lie in (0, {1 - EXP_GAP!r}] (0 < q < 1, at least {EXP_GAP:g} from 1)"
+_HIGH = f"must lie in [{1 + EXP_GAP!r}, {EXP_MAX:g}] (q > 1, at least {EXP_GAP:g} from 1)"
 _RANGES = {
     "beta1": "must be > 0 (a number or a list of three)",
     "beta2": "must be > 0 (a number or a list of three)",
     "alpha1": "must be > 0 (a number or a list of three)",
     "alpha2": "must be > 0 (a number or a list of three)",
-    "q1": "must lie in (0, 1)",
-    "g1": "must lie in (0, 1)",
-    "q2": "must be > 1",
-    "g2": "must be > 1",
+    "q1": _LOW,
+    "g1": _LOW,
+    "q2": _HIGH,
+    "g2": _HIGH,
     "a_max": "must be > 0 (m/s^2, per-axis bound on the disturbance)",
     "theta1": "must lie in (0, 1)",
     "theta2": "must lie in (0, 1)",
@@ -97,7 +114,11 @@ class Gains:
 def _number(name: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise ParameterError(name, value, "must be a number; " + _RANGES[name])
-    x = float(value)
+    try:
+        x = float(value)
+    except OverflowError:  # a TOML integer beyond the double range
+        raise ParameterError(name, value, "is too large for a double; " + _RANGES[name]) \
+            from None
     if not math.isfinite(x):
         raise ParameterError(name, value, "must be finite; " + _RANGES[name])
     return x
@@ -105,8 +126,8 @@ def _number(name: str, value: Any) -> float:
 
 def _check_range(name: str, x: float) -> None:
     ok = {
-        "q1": 0.0 < x < 1.0, "g1": 0.0 < x < 1.0,
-        "q2": x > 1.0, "g2": x > 1.0,
+        "q1": 0.0 < x <= 1.0 - EXP_GAP, "g1": 0.0 < x <= 1.0 - EXP_GAP,
+        "q2": 1.0 + EXP_GAP <= x <= EXP_MAX, "g2": 1.0 + EXP_GAP <= x <= EXP_MAX,
         "theta1": 0.0 < x < 1.0, "theta2": 0.0 < x < 1.0,
     }.get(name, x > 0.0)
     if not ok:
@@ -162,25 +183,50 @@ def gains_from_dict(data: dict[str, Any]) -> Gains:
             _check_range(k, x)
         dist = Disturbance(**dv)
     extra = {k: v for k, v in data.items() if k not in ("gains", "disturbance")}
-    return Gains(disturbance=dist, extra=extra, **vals)
+    out = Gains(disturbance=dist, extra=extra, **vals)
+    from lgw.theory.mars.bounds import check_evaluable  # bounds imports this module
+
+    check_evaluable(out)
+    return out
 
 
 def load_gains(path: str | Path) -> Gains:
     """Read and validate a gains TOML file."""
     p = Path(path)
     try:
-        text = p.read_text()
+        raw = p.read_bytes()
     except OSError as e:
         raise ParameterError("--gains", str(p), f"cannot be read ({e.strerror})") from e
+    return gains_from_dict(parse_toml_bytes(raw, "--gains", str(p)))
+
+
+def decode_text(raw: bytes, name: str, shown: str) -> str:
+    """UTF-8 text of a user file (a leading byte-order mark dropped); binary or other encodings
+    are a ParameterError naming the option ``name`` and the file ``shown``."""
+    if b"\x00" in raw:
+        raise ParameterError(name, shown, "is a binary file (it contains NUL bytes), not text")
     try:
-        data = tomllib.loads(text)
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise ParameterError(name, shown, f"is not UTF-8 text (byte 0x{raw[e.start]:02x} at "
+                             f"offset {e.start})") from None
+
+
+def parse_toml_bytes(raw: bytes, name: str = "--gains", shown: str = "<text>") -> dict[str, Any]:
+    """Parse a TOML document from bytes; every failure (encoding, syntax, duplicate keys,
+    nesting too deep for the parser) is a ParameterError."""
+    text = decode_text(raw, name, shown)
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
-        raise ParameterError("--gains", str(p), f"is not valid TOML ({e})") from e
-    return gains_from_dict(data)
+        raise ParameterError(name, shown, f"is not valid TOML ({e})") from None
+    except RecursionError:
+        raise ParameterError(name, shown, "is not valid TOML (arrays or tables nested too "
+                             "deeply)") from None
 
 
 def gains_from_toml_text(text: str) -> Gains:
-    return gains_from_dict(tomllib.loads(text))
+    return gains_from_dict(parse_toml_bytes(text.encode("utf-8"), "gains", "<text>"))
 
 
 def default_gains() -> Gains:

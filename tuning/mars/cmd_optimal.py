@@ -2,15 +2,17 @@
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 from typing import Any
 
 import click
 import numpy as np
+from lgw.sim.mars.optimal import N_RANGE
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.parameters import ISP, M0, R0, THRUST_MAX_AXIS, V0
+from lgw.tuning.io import atomic_write_text, check_out_dir, json_document, make_out_dir
+from lgw.tuning.options import Integer, Number, choice, out_dir_option
 
 PAPER_FUEL_OPTIMAL = 212.9067  # kg, seed 000 Part 1 (GPOPS, tf = 30 s)
 REPLAYS = (("none", 0.0), ("sin", 1.0), ("sin", 20.0))  # Fig. 3 uses 1; (47) prints 20
@@ -46,28 +48,35 @@ def _replays(sol: Any, drag: str) -> list[dict[str, Any]]:
 
 
 @click.command("mars")
-@click.option("--tf", type=float, default=None,
-              help="flight time in s (default 30 s, seed 000 Part 1)")
+@click.option("--tf", type=Number(0, 1e5, lo_open=True, unit="s"), default=None,
+              help="flight time, s [default: 30, seed 000 Part 1]")
 @click.option("--min-tf", is_flag=True, help="find the shortest feasible flight time instead")
-@click.option("--thrust-max", type=float, default=THRUST_MAX_AXIS, show_default=True,
-              help="thrust upper bound in N (per axis or on the norm, see --limit)")
-@click.option("--limit", type=click.Choice(("axis", "norm")), default="axis", show_default=True,
+@click.option("--thrust-max", type=Number(0, 1e9, lo_open=True, unit="N"),
+              default=THRUST_MAX_AXIS,
+              show_default=True,
+              help="thrust upper bound, N (per axis or on the norm, see --limit)")
+@click.option("--limit", type=choice(("axis", "norm")), default="axis", show_default=True,
               help="axis: |F_i| <= thrust-max (seed 000 Part 3); norm: ||F|| <= thrust-max")
-@click.option("--thrust-min", type=float, default=None,
-              help="lower bound on ||F|| in N (needs the lossless convexification)")
-@click.option("--n", "n", type=int, default=80, show_default=True, help="number of ZOH steps")
-@click.option("--isp", type=float, default=ISP, show_default=True, help="specific impulse, s")
+@click.option("--thrust-min", type=Number(0, 1e9, unit="N"), default=None,
+              help="lower bound on ||F||, N (needs the lossless convexification) [default: "
+                   "none, seed 000 states no minimum]")
+@click.option("--n", "n", type=Integer(N_RANGE[0], N_RANGE[1], "ZOH steps"), default=80,
+              show_default=True,
+              help="number of zero-order-hold steps of the SOCP")
+@click.option("--isp", type=Number(0, lo_open=True, unit="s"), default=ISP, show_default=True,
+              help="specific impulse, s")
 @click.option("--no-replay", is_flag=True, help="skip the open-loop replays")
-@click.option("--drag", type=click.Choice(("none", "physical", "printed")), default="none",
+@click.option("--drag", type=choice(("none", "physical", "printed")), default="none",
               show_default=True, help="drag model of the replay's plant (none: the SOCP's)")
-@click.option("--json", "as_json", is_flag=True, help="print JSON instead of text")
-@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="write optimal.json and thrust.csv to this directory")
+@click.option("--json", "as_json", is_flag=True,
+              help="print JSON instead of text (schema: docs/json.md)")
+@out_dir_option("optimal.json and thrust.csv", dest="out_dir")
 def command(tf: float | None, min_tf: bool, thrust_max: float, limit: str,
             thrust_min: float | None, n: int, isp: float, no_replay: bool, drag: str,
             as_json: bool,
             out_dir: Path | None) -> None:
     """Fuel-optimal descent (SOCP, Acikmese & Ploen 2007) and its open-loop replay."""
+    check_out_dir(out_dir)
     from lgw.sim.mars.optimal import min_time, solve_fuel_optimal
 
     if min_tf and tf is not None:
@@ -87,23 +96,25 @@ def command(tf: float | None, min_tf: bool, thrust_max: float, limit: str,
             raise ParameterError("--tf", tf, f"infeasible with these thrust bounds: must be >= "
                                  f"{lo:.3f} s (shortest feasible tf, from --min-tf)")
     reps = [] if no_replay else _replays(sol, drag)
-    report: dict[str, Any] = {"plant": "mars", "solution": sol.to_dict(arrays=True),
+    report: dict[str, Any] = {"command": "optimal mars", "plant": "mars",
+                              "solution": sol.to_dict(arrays=True),
                               "sources": _sources(sol), "replays": reps,
                               "paper_fuel_optimal_kg": PAPER_FUEL_OPTIMAL}
     if mt is not None:
         report["min_tf"] = {"tf_min": mt.tf_min, "bracket": list(mt.bracket),
                             "iterations": mt.iterations}
+    text = json_document(report, indent=1)
     if out_dir is not None:
-        out_dir.mkdir(parents=True, exist_ok=True)
-        (out_dir / "optimal.json").write_text(json.dumps(report, indent=1))
+        make_out_dir(out_dir)
         rows = ["t_start_s,t_end_s,Fx_N,Fy_N,Fz_N,norm_N"]
         for k in range(sol.n):
             f = sol.F[k]
             rows.append(f"{sol.t[k]:.6f},{sol.t[k + 1]:.6f},{f[0]:.3f},{f[1]:.3f},{f[2]:.3f},"
                         f"{np.linalg.norm(f):.3f}")
-        (out_dir / "thrust.csv").write_text("\n".join(rows) + "\n")
+        atomic_write_text(out_dir / "thrust.csv", "\n".join(rows) + "\n")
+        atomic_write_text(out_dir / "optimal.json", text + "\n")
     if as_json:
-        click.echo(json.dumps(report, indent=1))
+        click.echo(text)
         return
     _print_text(sol, mt, reps, out_dir)
 

@@ -8,7 +8,6 @@ Exit codes: 0 feasible (file written); 2 invalid input (``lgw.theory.errors.Para
 
 from __future__ import annotations
 
-import json
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -17,6 +16,7 @@ import click
 import numpy as np
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.parameters import AXES, THETA1_PAPER, THETA2_PAPER
+from lgw.tuning.io import check_out_file, json_document
 from lgw.tuning.mars.design import (
     BOUNDS,
     LIMITS,
@@ -28,8 +28,13 @@ from lgw.tuning.mars.design import (
     tune,
 )
 from lgw.tuning.mars.gains_file import certificate, write_gains
+from lgw.tuning.options import Number, choice, seed_option
 
 EXIT_INFEASIBLE = 3
+# Upper ends of the request, on the scale of a Mars powered descent (km, minutes, kN), so that the
+# geometric program and the simulated check stay well scaled: larger values are typing errors.
+TF_MAX = 1e4  # s
+THRUST_CAP = 1e9  # N
 
 
 def _fmt_state(x: np.ndarray) -> str:
@@ -57,42 +62,58 @@ def whole_box_note(env: Envelope, forced_fraction: float, thrust_max: float,
 
 
 @click.command("mars")
-@click.option("--tf", type=float, required=True, help="required landing-time bound, s")
-@click.option("--thrust-max", type=float, required=True, help="thrust limit, N")
-@click.option("--limit", default="axis", show_default=True, help=" | ".join(LIMITS))
+@click.option("--tf", type=Number(0, TF_MAX, lo_open=True, unit="s"), required=True,
+              help="required landing-time bound, s")
+@click.option("--thrust-max", type=Number(0, THRUST_CAP, lo_open=True, unit="N"), required=True,
+              help="thrust limit, N (per axis or on the norm, see --limit)")
+@click.option("--limit", type=choice(LIMITS), default="axis", show_default=True,
+              help="axis: |F_i| <= thrust-max; norm: ||F|| <= thrust-max")
 @click.option("--envelope", "envelope", default="table3+table2", show_default=True,
-              help="table3+table2 | table3 | table2 | CSV file of states "
-                   "(rx, ry, rz, vx, vy, vz, m)")
-@click.option("--a-max", type=float, default=None, help="disturbance bound |a_p,i|, m/s^2")
-@click.option("--neighborhood", type=float, default=None,
-              help="required landing neighborhood (31) under --a-max, m")
-@click.option("--theta1", type=float, default=THETA1_PAPER, show_default=True)
-@click.option("--theta2", type=float, default=THETA2_PAPER, show_default=True)
-@click.option("--bound", default="exact", show_default=True, help=" | ".join(BOUNDS))
-@click.option("--objective", default="peak-thrust", show_default=True,
-              help=" | ".join(OBJECTIVES))
-@click.option("--keep-out", type=float, default=50.0, show_default=True,
+              help="initial states to cover: table3+table2 | table3 | table2 | a CSV file of "
+                   "states (rx, ry, rz, vx, vy, vz, m; m, m/s, kg)")
+@click.option("--a-max", type=Number(0, 1e3, lo_open=True, unit="m/s^2"), default=None,
+              help="disturbance bound |a_p,i|, m/s^2 [default: no disturbance; needs "
+                   "--neighborhood]")
+@click.option("--neighborhood", type=Number(0, 1e6, lo_open=True, unit="m"), default=None,
+              help="required landing neighbourhood (31) under --a-max, m [default: none]")
+@click.option("--theta1", type=Number(0, 1, lo_open=True, hi_open=True), default=THETA1_PAPER,
+              show_default=True, help="Theorem 4 splitting constant of s2 (39), in (0, 1)")
+@click.option("--theta2", type=Number(0, 1, lo_open=True, hi_open=True), default=THETA2_PAPER,
+              show_default=True, help="Theorem 4 splitting constant of s1 (31), in (0, 1)")
+@click.option("--bound", type=choice(BOUNDS), default="exact", show_default=True,
+              help="landing-time bound to meet: exact (T1* + T2*) or polyakov ((18) + (26))")
+@click.option("--objective", type=choice(OBJECTIVES), default="peak-thrust", show_default=True,
+              help="what the gains minimize over the envelope")
+@click.option("--keep-out", type=Number(0, 1e5, unit="m"), default=50.0, show_default=True,
               help="d_keep: states closer than this to the target on an axis are not covered, m")
-@click.option("--brake-fraction", type=float, default=0.5, show_default=True,
-              help="kappa: states that must brake harder than kappa x the available "
+@click.option("--brake-fraction", type=Number(0, 1, lo_open=True), default=0.5,
+              show_default=True,
+              help="kappa in (0, 1]: states that must brake harder than kappa x the available "
                    "deceleration to stop short of the target are not covered")
-@click.option("--seed", type=int, default=0, show_default=True, help="worst-case search seed")
+@seed_option("seed of the worst-case search")
 @click.option("--fast", is_flag=True, help="smaller exponent grid and worst-case search")
 @click.option("--no-suggest", is_flag=True, help="do not search the nearest feasible tf")
-@click.option("--json", "as_json", is_flag=True, help="print the certificate as JSON")
-@click.option("--out", type=click.Path(dir_okay=False, path_type=Path), required=True,
-              help="gains TOML file to write (with a [certificate] table)")
+@click.option("--json", "as_json", is_flag=True,
+              help="print the certificate as JSON (schema: docs/json.md)")
+@click.option("--out", type=click.Path(path_type=Path), required=True,
+              help="the gains TOML file to write (one file, with a [certificate] table); its "
+                   "folder must exist; checked before any work, written atomically")
 def command(tf: float, thrust_max: float, limit: str, envelope: str,
             a_max: float | None, neighborhood: float | None, theta1: float, theta2: float,
             bound: str, objective: str, keep_out: float, brake_fraction: float, seed: int,
             fast: bool, no_suggest: bool, as_json: bool, out: Path) -> None:
     """Tune the corrected law's gains for a landing-time bound TF and a thrust limit."""
+    check_out_file(out)
     req = Request(tf=tf, thrust_max=thrust_max, limit=limit, bound=bound, objective=objective,
                   a_max=a_max, neighborhood=neighborhood, theta1=theta1, theta2=theta2)
     req.check()
-    if not out.parent.is_dir():
-        raise ParameterError("--out", str(out), "its directory does not exist")
-    env = envelope_from_name(envelope, keep_out=keep_out, brake_fraction=brake_fraction)
+    try:
+        env = envelope_from_name(envelope, keep_out=keep_out, brake_fraction=brake_fraction)
+    except ParameterError as e:  # a CSV envelope is read by the --initial-states loader
+        if not e.name.startswith("--initial-states"):
+            raise
+        raise ParameterError(e.name.replace("--initial-states", "--envelope"), e.value,
+                             e.valid) from None
     res = tune(req, env, seed=seed, fast=fast)
     cmd = "lgw tune mars " + " ".join(sys.argv[3:] if len(sys.argv) > 3 else [])
     note = whole_box_note(env, res.forced_fraction, req.thrust_max, req.limit)
@@ -118,7 +139,8 @@ def command(tf: float, thrust_max: float, limit: str, envelope: str,
               f"bound = {bound}, envelope = {env.name}")
     write_gains(out, res.gains, cert, header=header)
     if as_json:
-        click.echo(json.dumps(cert, default=float, indent=1))
+        click.echo(json_document({"command": "tune mars", **res.gains.to_dict(),
+                                  "out": str(out), "certificate": cert}, indent=1))
         return
     ev = res.evaluation
     b = cert["bounds"]

@@ -22,9 +22,11 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from lgw.theory.errors import ParameterError
 from lgw.theory.mars.bounds import axis_bounds
-from lgw.theory.mars.gains import Gains, gains_to_toml
+from lgw.theory.mars.gains import Gains, gains_to_toml, load_gains
 from lgw.theory.mars.parameters import AXES, M_DRY
+from lgw.tuning.io import atomic_write_text
 from lgw.tuning.mars.design import (
     REFINE_FACTORS,
     REFINE_RTOL,
@@ -163,11 +165,33 @@ def certificate(res: TuneResult, req: Request, env: Envelope, command: str = "")
     return cert
 
 
+def check_certificate(g: Gains, shown: str, name: str = "--tuned") -> Gains:
+    """Validate the [certificate] table of a tuned gains file as far as the commands read it
+    (a table; its request.tf, if given, a finite number > 0 s); the [gains] tables were
+    validated by ``load_gains``."""
+    cert = g.extra.get("certificate")
+    if cert is None:
+        return g
+    if not isinstance(cert, dict):
+        raise ParameterError(name, shown, "its [certificate] must be a table")
+    req = cert.get("request", {})
+    if not isinstance(req, dict):
+        raise ParameterError(name, shown, "its [certificate.request] must be a table")
+    tf = req.get("tf")
+    if tf is not None and (isinstance(tf, bool) or not isinstance(tf, int | float)
+                           or not math.isfinite(float(tf)) or not float(tf) > 0):
+        raise ParameterError(f"{name} {shown} certificate.request.tf", tf,
+                             "must be a finite number > 0 (s)")
+    return g
+
+
+def load_tuned(path: str | Path, name: str = "--tuned") -> Gains:
+    """A tuned gains file (``lgw tune`` output): its gains and its certificate, validated."""
+    return check_certificate(load_gains(path), str(path), name)
+
+
 def write_gains(path: str | Path, gains: Gains, cert: dict[str, Any], header: str = "") -> None:
     """Write [gains], [disturbance] and [certificate] (atomically: temp file, then rename)."""
     text = gains_to_toml(gains, header=header).rstrip("\n") + "\n\n"
     text += "\n".join(toml_tables("certificate", cert)).rstrip("\n") + "\n"
-    p = Path(path)
-    tmp = p.with_name(p.name + ".tmp")
-    tmp.write_text(text)
-    tmp.replace(p)
+    atomic_write_text(Path(path), text)

@@ -1,0 +1,249 @@
+"""CLI conventions (issue 18): one error style, click.Choice everywhere, defaults and units in
+the help, one name per concept, tables that never truncate in a pipe.
+
+``run_lgw`` runs ``lgw`` in-process through ``lgw.tuning.cli.main`` (its error handling, exit
+codes and stderr), which the fuzz tests and ``tests/mars/test_inputs.py`` share.
+"""
+
+from __future__ import annotations
+
+import importlib
+import re
+import subprocess
+import sys
+from dataclasses import dataclass
+
+import click
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from lgw.tuning.cli import VERBS, cli, main, systems_for
+from lgw.tuning.options import Choice
+
+
+@dataclass
+class Run:
+    code: int
+    stdout: str
+    stderr: str
+    exception: BaseException | None
+
+
+@click.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True,
+                                 "help_option_names": []})
+@click.argument("args", nargs=-1, type=click.UNPROCESSED)
+def _shell(args: tuple[str, ...]) -> None:
+    main(list(args))
+
+
+def run_lgw(args: list[str]) -> Run:
+    """``lgw ARGS`` in-process: exit code, stdout, stderr, and any exception that escaped
+    ``main`` (which would have been a traceback)."""
+    res = CliRunner().invoke(_shell, args, catch_exceptions=True)
+    exc = res.exception if not isinstance(res.exception, SystemExit) else None
+    return Run(res.exit_code, res.stdout, res.stderr, exc)
+
+
+def assert_one_error(r: Run) -> None:
+    """Exit 2, exactly one line on stderr and it starts with ``error:``, no traceback."""
+    assert r.exception is None, f"escaped main: {r.exception!r}"
+    assert r.code == 2, (r.code, r.stderr)
+    lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: "), r.stderr
+    assert "Traceback" not in r.stderr and "Usage:" not in r.stderr
+
+
+def _commands() -> list[tuple[str, str, click.Command]]:
+    out = []
+    for verb in VERBS:
+        for system in systems_for(verb):
+            mod = importlib.import_module(f"lgw.tuning.{system}.cmd_{verb}")
+            out.append((verb, system, mod.command))
+    return out
+
+
+COMMANDS = _commands()
+CHOICE_OPTIONS = [(v, s, p) for v, s, c in COMMANDS for p in c.params
+                  if isinstance(p, click.Option) and isinstance(p.type, click.Choice)]
+# commands other engineers own: their options are checked by the lead after the merge
+OWNED_ELSEWHERE = {"verify", "report"}
+
+
+def test_there_are_choice_options_everywhere_expected():
+    names = {(v, p.opts[0]) for v, _, p in CHOICE_OPTIONS}
+    for need in [("simulate", "--law"), ("simulate", "--disturbance"), ("simulate", "--limit"),
+                 ("simulate", "--drag"), ("simulate", "--method"), ("simulate", "--dispersion"),
+                 ("simulate", "--guidance-drag"), ("tune", "--limit"), ("tune", "--bound"),
+                 ("tune", "--objective"), ("optimal", "--limit"), ("optimal", "--drag"),
+                 ("compare", "--drag")]:
+        assert need in names, need
+
+
+@pytest.mark.parametrize("verb, system, opt", [(v, s, p.opts[0]) for v, s, p in CHOICE_OPTIONS],
+                         ids=lambda x: str(x))
+def test_every_choice_rejects_a_wrong_value_in_lgw_style(tmp_path, verb, system, opt):
+    out = tmp_path / "out"
+    args = [verb, system, opt, "no-such-value"]
+    if verb == "tune":
+        args += ["--tf", "60", "--thrust-max", "50000"]
+    args += ["--out", str(out)] if verb != "verify" else []
+    r = run_lgw(args)
+    assert_one_error(r)
+    assert opt in r.stderr and "no-such-value" in r.stderr
+    assert not out.exists()
+
+
+def test_choices_are_lgw_choices_in_owned_commands():
+    for verb, _, p in CHOICE_OPTIONS:
+        if verb not in OWNED_ELSEWHERE:
+            assert isinstance(p.type, Choice), (verb, p.opts)
+
+
+@pytest.mark.parametrize("verb, system, cmd", [c for c in COMMANDS if c[0] not in OWNED_ELSEWHERE],
+                         ids=lambda x: str(x) if isinstance(x, str) else "")
+def test_every_option_has_help_and_defaults_are_shown(verb, system, cmd):
+    for p in cmd.params:
+        if not isinstance(p, click.Option) or p.hidden or p.is_flag:
+            continue
+        assert p.help, (verb, p.opts)
+        if p.default is not None and not p.required:
+            assert p.show_default or "default" in p.help, (verb, p.opts)
+
+
+def test_numeric_options_say_their_unit_or_range():
+    from lgw.tuning.options import Integer, Number
+
+    for verb, _, cmd in COMMANDS:
+        if verb in OWNED_ELSEWHERE:
+            continue
+        for p in cmd.params:
+            if isinstance(p, click.Option) and not p.hidden:
+                plain = click.types.FloatParamType | click.types.IntParamType
+                assert not isinstance(p.type, plain), (verb, p.opts, "use Number / Integer")
+                if isinstance(p.type, Number | Integer):
+                    assert p.type.valid.startswith("must be")
+
+
+def test_one_name_for_the_disturbance_amplitude():
+    sim = {o for p in dict((v, c) for v, _, c in COMMANDS)["simulate"].params for o in p.opts}
+    cmp_cmd = dict((v, c) for v, _, c in COMMANDS)["compare"]
+    visible = {o for p in cmp_cmd.params if not getattr(p, "hidden", False) for o in p.opts}
+    assert "--dist-amplitude" in sim and "--dist-amplitude" in visible
+    assert "--amplitude" not in visible  # kept only as a hidden deprecated alias
+    r = run_lgw(["compare", "mars", "--amplitude", "nan"])
+    assert_one_error(r)
+
+
+@pytest.mark.parametrize("args", [["simulate", "mars", "--bogus"], ["simulate", "mars", "--dt"],
+                                  ["tune", "mars"], ["bounds", "nowhere"], ["nope"],
+                                  ["simulate", "mars", "--cases", "x"]])
+def test_click_usage_errors_print_as_lgw_errors(args):
+    assert_one_error(run_lgw(args))
+
+
+def test_help_exits_0():
+    r = run_lgw(["simulate", "mars", "--help"])
+    assert r.code == 0 and "--dist-amplitude" in r.stdout and "[default: 20" in r.stdout
+
+
+def test_exit_2_in_a_real_process():
+    p = subprocess.run([sys.executable, "-c", "from lgw.tuning.cli import main; main()",
+                        "simulate", "mars", "--law", "nope"], capture_output=True, text=True,
+                       timeout=120)
+    assert p.returncode == 2 and p.stderr.startswith("error: --law")
+    assert len(p.stderr.strip().splitlines()) == 1
+
+
+def test_console_is_wide_in_a_pipe():
+    """A rich table printed through lgw.tuning.io.console() to a pipe keeps every header."""
+    code = ("from lgw.tuning.io import console\nfrom rich.table import Table\n"
+            "t = Table()\n"
+            "for i in range(12): t.add_column(f'a_long_column_header_{i}')\n"
+            "t.add_row(*[f'cell value number {i}' for i in range(12)])\n"
+            "console().print(t)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
+                       env={"PATH": "/usr/bin:/bin", "COLUMNS": "80"})
+    assert p.returncode == 0, p.stderr
+    for i in range(12):
+        assert f"a_long_column_header_{i}" in p.stdout
+        assert f"cell value number {i}" in p.stdout
+    assert "…" not in p.stdout
+
+
+def test_bounds_table_untruncated_in_a_pipe():
+    p = subprocess.run([sys.executable, "-c", "from lgw.tuning.cli import main; main()",
+                        "bounds", "mars"], capture_output=True, text=True, timeout=120,
+                       env={"PATH": "/usr/bin:/bin", "COLUMNS": "40"})
+    assert p.returncode == 0, p.stderr
+    for label in ("landing bound under disturbance (40*)+(45*)", "[T1_practical_exact]",
+                  "time to (39), exact"):
+        assert label in p.stdout
+    assert "…" not in p.stdout
+
+
+@pytest.mark.xfail(strict=True, reason="cmd_verify.py (owned elsewhere) still builds its own "
+                   "Console(); the lead switches it to lgw.tuning.io.console(), then this passes "
+                   "and the marker goes")
+def test_verify_headers_untruncated_in_a_pipe():
+    """In-process (CliRunner's stdout is not a terminal, like a pipe or a CI log; this shares
+    the compiled kernels with the rest of the session)."""
+    r = run_lgw(["verify", "mars", "--examples", "2", "--batch", "2"])
+    assert r.exception is None and r.code in (0, 1), r.stderr
+    header = next(ln for ln in r.stdout.splitlines() if "claim" in ln)
+    for col in ("claim", "eq.", "bound s", "worst s", "obs/bound", "margin s", "skipped",
+                "verdict"):
+        assert col in header, header
+    assert "…" not in r.stdout
+
+
+def test_cli_group_builds():
+    assert isinstance(cli, click.Group) and re.match(r"\d", importlib.import_module(
+        "lgw").__version__)
+
+
+def _fake_result(n: int):
+    """A BatchResult of n cases without flying (numpy only): case i lands at t = i s except
+    cases 7 (non-finite) and 40 (out of propellant)."""
+    from lgw.sim.mars.batch import ARRAY_FIELDS, BatchResult
+
+    vec = {"r_land", "v_land", "peak_thrust", "peak_thrust_unsat", "t_s1", "t_s2",
+           "t_s1_last_exit", "t_s2_last_exit"}
+    kw = {}
+    for k in ARRAY_FIELDS:
+        shape = (n, 3) if k in vec else (n, 7) if k == "y_end" else (n,)
+        kw[k] = np.zeros(shape, bool if k in ("landed", "ground_contact", "nonfinite",
+                                               "fuel_exhausted", "step_limit") else float)
+    kw["steps"] = np.ones(n, np.int64)
+    kw["landed"][:] = True
+    kw["landing_time"] = np.arange(n, dtype=float)
+    for i, flag in ((7, "nonfinite"), (40, "fuel_exhausted")):
+        kw["landed"][i] = False
+        kw[flag][i] = True
+        kw["landing_time"][i] = np.nan
+    return BatchResult(eps=0.05, dt=0.05, r0=np.zeros((n, 3)), v0=np.zeros((n, 3)),
+                       m0=np.full(n, 1905.0), info={}, **kw)
+
+
+def test_per_case_table_shows_flagged_then_worst_and_counts_the_hidden():
+    from lgw.tuning.mars.cmd_simulate import (
+        PER_CASE_ROWS,
+        _print_cases,
+        case_flags,
+        select_cases,
+        shown_cases,
+    )
+    from rich.console import Console
+
+    res = _fake_result(20_000)
+    idx = shown_cases(res)
+    assert len(idx) == PER_CASE_ROWS
+    assert idx[:2].tolist() == [7, 40]  # flagged first
+    assert idx[2:5].tolist() == [19_999, 19_998, 19_997]  # then the latest landings
+    recs = select_cases(res, idx)
+    assert [r["case"] for r in recs[:3]] == [7, 40, 19_999]
+    con = Console(width=400, record=True)
+    _print_cases(recs, len(res), int(case_flags(res).sum()), con)
+    text = con.export_text()
+    assert f"{20_000 - PER_CASE_ROWS} more cases not shown" in text
+    assert f"{PER_CASE_ROWS} of 20000 shown" in text and "2 flagged" in text
+    assert "NONFINITE" in text and "DRY" in text
