@@ -136,13 +136,13 @@ def test_cli_dopri5_agrees_with_rk4() -> None:
 
 
 @pytest.mark.parametrize("args,name", [
-    (["--method", "rk45"], "--method"), (["--method", "dopri5", "--rtol", "0"], "rtol"),
-    (["--method", "dopri5", "--max-step", "-1"], "max_step"),
+    (["--method", "rk45"], "--method"), (["--method", "dopri5", "--rtol", "0"], "--rtol"),
+    (["--method", "dopri5", "--max-step", "-1"], "--max-step"),
     (["--method", "dopri5", "--reference"], "--method"),
-    (["--m-dry", str(M0 + 1.0)], "m_dry"), (["--m-dry", "-1"], "m_dry"),
+    (["--m-dry", str(M0 + 1.0)], "m_dry"), (["--m-dry", "-1"], "--m-dry"),
     (["--law", "pid"], "--law"), (["--dispersion", "table9"], "--dispersion"),
-    (["--cases", "5"], "--cases"), (["--dispersion", "table2", "--cases", "0"], "cases"),
-    (["--thrust-max", "-3"], "--thrust-max"), (["--dt", "0"], "dt"),
+    (["--cases", "5"], "--cases"), (["--dispersion", "table2", "--cases", "0"], "--cases"),
+    (["--thrust-max", "-3"], "--thrust-max"), (["--dt", "0"], "--dt"),
     (["--disturbance", "storm"], "--disturbance"), (["--limit", "box"], "--limit"),
 ])
 def test_cli_bad_input_writes_nothing(tmp_path, args, name) -> None:
