@@ -379,7 +379,8 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
 
     mod = mars_kernel.kernel_module(law)
     kernel = mod.kernel_parallel if parallel else mod.kernel_serial
-    notice = CompileNotice(kernel, f"the mars/{law} kernel{'' if parallel else ' (serial)'}")
+    notice = CompileNotice(kernel, f"the mars/{law} kernel{'' if parallel else ' (serial)'}",
+                           expected="~30-60 s")
 
     def run(sl: slice) -> None:
         integrate.run_chunk(kernel, sl, C, Q, R, O, G, rec_y, rec_x)
