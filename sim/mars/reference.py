@@ -251,6 +251,7 @@ def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Ga
     out = {k: np.array([row[k] for row in rows]) for k in keys}
     info = {"law": law, "disturbance": disturbance, "thrust_limit": thrust_limit,
             "limit": limit if thrust_limit is not None else None, "drag": drag, "m_dry": m_dry,
+            "stop": stop,
             "integrator": f"solve_ivp {method} rtol={rtol} atol={atol} max_step={max_step}",
             "boundary_layer": None}
     traj = {"sol": [row["sol"] for row in rows]} if record else None
