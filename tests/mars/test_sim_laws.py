@@ -188,8 +188,8 @@ def test_replacing_a_law_needs_no_cache_clearing() -> None:
         register_law(pd(0.04))
         a = simulate_batch(R0[None], V0[None], [M0], default_gains(), law="pd-swap",
                            land_tol=(1.0, 1.0))
-        register_law(LawSpec("pd-swap", lambda: -mss.grav - mss.am - 2 * k1 * mss.r - k2 * mss.v,
-                             (k1, k2), lambda g: np.tile([0.04, 0.4], (3, 1)), "PD x2 (test)"))
+        register_law(LawSpec("pd-swap", lambda: -mss.grav - mss.am - 1.2 * k1 * mss.r - k2 * mss.v,
+                             (k1, k2), lambda g: np.tile([0.04, 0.4], (3, 1)), "PD, 1.2 k1 (test)"))
         b = simulate_batch(R0[None], V0[None], [M0], default_gains(), law="pd-swap",
                            land_tol=(1.0, 1.0))
         assert a.landed[0] and b.landed[0]
