@@ -231,6 +231,7 @@ def load_before(commit: str):
     """simulate_batch of sim/mars/batch.py at ``commit``, imported from a temporary file."""
     import importlib.util
     import subprocess
+    import sys
     import tempfile
     from pathlib import Path
 
@@ -241,6 +242,7 @@ def load_before(commit: str):
     path.write_text(src)
     spec = importlib.util.spec_from_file_location("batch_before", path)
     mod = importlib.util.module_from_spec(spec)
+    sys.modules["batch_before"] = mod  # dataclasses look their module up
     spec.loader.exec_module(mod)
     return mod.simulate_batch
 

@@ -95,6 +95,7 @@ from lgw.sim.options import (  # noqa: F401  (re-exported)
     StoppingOptions,
     positive,
 )
+from lgw.sim.results import classify
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.gains import Gains
 from lgw.theory.mars.parameters import AREA, G_MARS, ISP, LAND_POS_TOL, LAND_VEL_TOL, M_DRY
@@ -184,6 +185,14 @@ class BatchResult:
         info["replaced"] = sorted({*info.get("replaced", []), *idx.tolist()})
         return BatchResult(eps=self.eps, dt=self.dt, r0=self.r0, v0=self.v0, m0=self.m0,
                            info=info, **kw)
+
+    def outcomes(self) -> tuple[np.ndarray, np.ndarray]:
+        """(outcome per case as an index into ``lgw.sim.results.OUTCOMES``, its time in s):
+        exactly one per case, the first that happened (see lgw.sim.results)."""
+        return classify(landed=self.landed, fuel_exhausted=self.fuel_exhausted,
+                        nonfinite=self.nonfinite, step_limit=self.step_limit,
+                        landing_time=self.landing_time, t_end=self.t_end,
+                        stop_at_outcome=self.info.get("stop", "landing") == "landing")
 
     def equal(self, other: BatchResult) -> bool:
         """Bitwise equality of every per-case array (NaN == NaN)."""
@@ -379,7 +388,8 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
 
     mod = mars_kernel.kernel_module(law)
     kernel = mod.kernel_parallel if parallel else mod.kernel_serial
-    notice = CompileNotice(kernel, f"the mars/{law} kernel{'' if parallel else ' (serial)'}")
+    notice = CompileNotice(kernel, f"the mars/{law} kernel{'' if parallel else ' (serial)'}",
+                           expected="~30-60 s")
 
     def run(sl: slice) -> None:
         integrate.run_chunk(kernel, sl, C, Q, R, O, G, rec_y, rec_x)

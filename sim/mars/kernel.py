@@ -6,7 +6,8 @@ code (``lgw.sim.mars.laws.law_module_source``) and the integrator's ``case`` / `
 them.  What they compute is documented in ``lgw.sim.mars.batch``.
 
 State y = [r (3), v (3), m] (seed 000 (10)-(14)); auxiliary outputs X = [F (3) after the
-thrust limit, F (3) before it, s2 (3) of (21)]; trackers S, slots below.
+thrust limit, F (3) before it, s2 (3) of (21), the law's acceleration a (3)]; trackers S,
+slots below.
 
 Per-case inputs C = (r0, v0, m0, dcoef, domega, dphase); shared Q = (P, SP, grav, area, pkind,
 gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v, stop_landing, m_dry); results R = the
@@ -29,7 +30,7 @@ from lgw.sim.mars.parameters import (
 )
 
 NY = 7  # r, v, m
-NX = 9  # F after the limit, F before, s2
+NX = 12  # F after the limit, F before, s2, the law's acceleration a (F before = m a)
 # tracker slots in S
 TF = 0  # 6: first entry into the band, s1 x/y/z then s2 x/y/z
 TX = 6  # 6: last exit
@@ -103,6 +104,7 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
         am = _drag(gkind, fac_g, Y[yr, 3 + ax], area[ax], m)
         a, X[6 + ax] = law(Y[yr, ax], Y[yr, 3 + ax], grav[ax], am, m, P, SP, ax)  # noqa: F821
         X[3 + ax] = m * a
+        X[9 + ax] = a
     if lim == 1:
         for ax in range(3):
             f = X[3 + ax]
@@ -140,7 +142,16 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
         else:
             ap = 0.0
         K[kr, ax] = Y[yr, 3 + ax]
-        K[kr, 3 + ax] = (X[ax] / m + grav[ax]
+        if Y[yr, ax] == 0.0 and Y[yr, 3 + ax] == 0.0 and X[ax] == X[3 + ax]:
+            # an axis exactly at rest on its target with its command unlimited: the law's
+            # acceleration a itself, not (m a) / m, which differs from a by an ulp; with a =
+            # -g - a_m (the law's limit there, lgw.sim.mars.laws.origin_expr) the sum is
+            # exactly 0, so the axis stays at rest instead of drifting into the singular
+            # |s1|^(q1-1) v at s1 = 0 (on z, where g != 0; issue 14)
+            acc = X[9 + ax]
+        else:
+            acc = X[ax] / m
+        K[kr, 3 + ax] = (acc + grav[ax]
                          + _drag(pkind, fac_p, Y[yr, 3 + ax], area[ax], m) + ap)
     K[kr, 6] = -fn / c
 

@@ -57,22 +57,35 @@ class ClosedLoopRHS:
         g = self.g
         return self.s2(y[:3], y[3:6], g.beta1, g.beta2, g.q1, g.q2)
 
-    def force(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(F after the limit, F before) commanded at state y (7,), or at states y (..., 7)."""
+    def _command(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         y = np.asarray(y, float)
         r, v, m = y[..., :3], y[..., 3:6], y[..., 6]
         with np.errstate(divide="ignore", invalid="ignore"):
-            a = self.law(r, v, G_MARS, drag_accel(r, v, m, self.gdrag), m, self.P)
-        fu = np.asarray(m, float)[..., None] * np.asarray(a, float)
-        return saturate(fu, self.thrust_limit, self.limit), fu
+            a = np.asarray(self.law(r, v, G_MARS, drag_accel(r, v, m, self.gdrag), m, self.P),
+                           float)
+        fu = np.asarray(m, float)[..., None] * a
+        return saturate(fu, self.thrust_limit, self.limit), fu, a
+
+    def force(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(F after the limit, F before) commanded at state y (7,), or at states y (..., 7)."""
+        f, fu, _ = self._command(y)
+        return f, fu
 
     def __call__(self, t: float, y: np.ndarray, ap_extra: np.ndarray | None = None
                  ) -> np.ndarray:
-        f, _ = self.force(y)
+        f, fu, a = self._command(y)
         ap = self.dist.accel(t, self.s2_of(y) if self.dist.kind == "worst" else None, self.case)
         if ap_extra is not None:
             ap = ap + ap_extra
-        return plant_rhs(t, y, f, drag=self.drag, isp=self.isp, disturbance_accel=ap)
+        dy = plant_rhs(t, y, f, drag=self.drag, isp=self.isp, disturbance_accel=ap)
+        r, v = y[:3], y[3:6]
+        rest = (r == 0.0) & (v == 0.0) & (f == fu)
+        if np.any(rest):
+            # as lgw.sim.mars.kernel: an axis at rest on its target with its command unlimited
+            # uses the law's a itself (exactly -g - a_m there), not (m a) / m
+            dy[3:6] = np.where(rest, a + G_MARS + drag_accel(r, v, y[6], self.drag) + ap,
+                               dy[3:6])
+        return dy
 
 
 class _NonFinite(Exception):  # noqa: N818  (control flow, not an error)
@@ -238,6 +251,7 @@ def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Ga
     out = {k: np.array([row[k] for row in rows]) for k in keys}
     info = {"law": law, "disturbance": disturbance, "thrust_limit": thrust_limit,
             "limit": limit if thrust_limit is not None else None, "drag": drag, "m_dry": m_dry,
+            "stop": stop,
             "integrator": f"solve_ivp {method} rtol={rtol} atol={atol} max_step={max_step}",
             "boundary_layer": None}
     traj = {"sol": [row["sol"] for row in rows]} if record else None

@@ -233,3 +233,42 @@ def test_bad_states() -> None:
         simulate_batch(R0[None], V0[None], [-1.0], G)
     with pytest.raises(ParameterError):
         simulate_batch(np.array([[np.nan, 0, 0]]), V0[None], [M0], G)
+
+
+def test_option_objects_give_the_keyword_results() -> None:
+    """``simulate`` with option objects is what ``simulate_batch``'s keywords build."""
+    from dataclasses import replace
+
+    from lgw.sim.mars.batch import INTEGRATION, simulate, stopping_defaults
+    from lgw.sim.options import LimitOptions
+
+    r0, v0, m0 = table3_states(6, seed=4)
+    kw = dict(method="dopri5", thrust_limit=50_000.0, limit="norm", stop="t_max", t_max=60.0,
+              land_tol=(0.2, 0.3))
+    a = simulate_batch(r0, v0, m0, G, **kw)
+    b = simulate(r0, v0, m0, G, integration=replace(INTEGRATION, method="dopri5"),
+                 stopping=stopping_defaults(stop="t_max", t_max=60.0, land_tol=(0.2, 0.3)),
+                 limits=LimitOptions(thrust_limit=50_000.0, kind="norm"))
+    assert a.equal(b)
+    assert b.info["integrator"].startswith("Dormand-Prince") and b.info["limit"] == "norm"
+    with pytest.raises(ParameterError, match="m_dry"):
+        simulate(r0, v0, m0, G, stopping=stopping_defaults(m_dry=float(m0.min())))
+
+
+@pytest.mark.parametrize("axis", [0, 1, 2])
+def test_axis_at_rest_on_its_target_stays_there(axis: int) -> None:
+    """Issue 14's reproduction: one axis exactly at r = v = 0 (on z the command is -g, and
+    (m a)/m + g is an ulp off 0, which drifted v_z into the singular |s1|^(q1-1) v): RK4,
+    dopri5 and the reference all land, and that axis stays exactly at rest."""
+    r0 = np.array([-200.0, 1400.0, 900.0])
+    v0 = np.array([-15.0, -100.0, -40.0])
+    r0[axis] = v0[axis] = 0.0
+    runs = [simulate_batch(r0[None], v0[None], [M0], G),
+            simulate_batch(r0[None], v0[None], [M0], G, method="dopri5"),
+            simulate_reference(r0[None], v0[None], [M0], G)]
+    for res in runs:
+        assert res.landed[0] and not res.nonfinite[0] and not res.fuel_exhausted[0]
+        assert res.r_land[0, axis] == 0.0 and res.v_land[0, axis] == 0.0
+        assert res.y_end[0, axis] == 0.0 and res.y_end[0, 3 + axis] == 0.0
+    np.testing.assert_allclose(runs[0].landing_time, runs[2].landing_time, atol=T_TOL)
+    np.testing.assert_allclose(runs[1].landing_time, runs[2].landing_time, atol=10 * T_TOL)

@@ -168,3 +168,36 @@ def test_register_a_new_law() -> None:
         assert b.landed[0]
     finally:
         LAWS.pop("pd-test")
+
+
+@pytest.mark.slow
+def test_replacing_a_law_needs_no_cache_clearing() -> None:
+    """register_law under an existing name: the generated code is keyed by the LawSpec (and on
+    disk by the expression), so the next simulation runs the new law, not a stale kernel."""
+    from lgw.sim.mars.batch import simulate_batch
+    from lgw.sim.mars.laws import LAWS, LawSpec, register_law
+    from lgw.theory.mars.parameters import M0, R0, V0
+
+    k1, k2 = sp.symbols("k1 k2", positive=True)
+
+    def pd(gain: float) -> LawSpec:
+        return LawSpec("pd-swap", lambda: -mss.grav - mss.am - k1 * mss.r - k2 * mss.v,
+                       (k1, k2), lambda g: np.tile([gain, 0.4], (3, 1)), "PD (test)")
+
+    try:
+        register_law(pd(0.04))
+        a = simulate_batch(R0[None], V0[None], [M0], default_gains(), law="pd-swap",
+                           land_tol=(1.0, 1.0))
+        register_law(LawSpec("pd-swap", lambda: -mss.grav - mss.am - 1.2 * k1 * mss.r - k2 * mss.v,
+                             (k1, k2), lambda g: np.tile([0.04, 0.4], (3, 1)), "PD, 1.2 k1 (test)"))
+        b = simulate_batch(R0[None], V0[None], [M0], default_gains(), law="pd-swap",
+                           land_tol=(1.0, 1.0))
+        assert a.landed[0] and b.landed[0]
+        assert a.landing_time[0] != b.landing_time[0]
+        # the same expression and parameters again: the first kernel, the first numbers
+        register_law(pd(0.04))
+        c = simulate_batch(R0[None], V0[None], [M0], default_gains(), law="pd-swap",
+                           land_tol=(1.0, 1.0))
+        assert c.equal(a)
+    finally:
+        LAWS.pop("pd-swap")
