@@ -204,14 +204,21 @@ def diag_symbols(name: str, n: int = 3, **assumptions) -> sp.Matrix:
     return sp.diag(*sp.symbols(f"{name}_1:{n + 1}", **assumptions))
 
 
-def orbit_system() -> GeneralSystem:
-    """Seed 001 (22): x1 = e_h, x2 = e_v, f1 = a_h = [0, 0, -1], f2 = 0, B0 = -I/m."""
+def orbit_system(full: bool = False) -> GeneralSystem:
+    """Seed 001 (22): x1 = e_h, x2 = e_v, f1 = a_h = [0, 0, -1], f2 = 0, B0 = -I/m.
+
+    K1, F2 diagonal (positive symbols) by default; ``full`` makes them general 3x3 symbol
+    matrices (the form the simulator's generated code takes)."""
     eh = sp.Matrix([sp.Symbol("e_h", real=True)])
     ev = sp.Matrix(sp.symbols("e_v1:4", real=True))
     mass = sp.Symbol("m", positive=True)
+    if full:
+        K1 = sp.Matrix(3, 3, sp.symbols("K1_1:10", real=True))
+        F2 = sp.Matrix(3, 3, sp.symbols("F2_1:10", real=True))
+    else:
+        K1, F2 = diag_symbols("k", positive=True), diag_symbols("F2d", positive=True)
     return GeneralSystem(eh, ev, sp.Matrix([[0, 0, -1]]), sp.zeros(3, 1), -sp.eye(3) / mass,
-                         diag_symbols("k", positive=True), diag_symbols("F2d", positive=True),
-                         name="orbit")
+                         K1, F2, name="orbit")
 
 
 def attitude_symbols():

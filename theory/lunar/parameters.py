@@ -50,8 +50,11 @@ ATTITUDE_GAINS = {"K1": [1.0, 1.0, 1.0], "F2": [5.0, 5.0, 5.0], "f3": 0.1, "d0e0
                   "q": 0.01}  # seed 001 S5 (diagonal entries)
 
 # --- Simulation choices -------------------------------------------------------------------
-# Fixed RK4 step: the fastest linear mode is F2_zz = 20 1/s (time constant 0.05 s); dt = 0.02 s
-# puts dt * 20 = 0.4 well inside RK4's stability interval (2.78) and is checked against a
-# tight solve_ivp reference in tests/lunar/test_sim_batch.py.
-DT = 0.02  # s, chosen
-QUAT_NORM_TOL = 1e-6  # |  |Q| - 1 | above this flags a case as out of the model's domain
+# Fixed RK4 step: the fastest linear mode is F2_zz = 20 1/s (time constant 0.05 s); dt = 0.05 s
+# puts dt * 20 = 1.0 inside RK4's stability interval (2.78); checked against a tight solve_ivp
+# reference in tests/lunar/test_sim_batch.py, and every scenario verdict that fails is re-flown
+# at dt/2.
+DT = 0.05  # s, chosen
+# | |Q| - 1 | above this flags a case as out of the model's domain (RK4 does not preserve the
+# norm; a well-resolved run drifts by about 1e-6 over the descent)
+QUAT_NORM_TOL = 1e-4
