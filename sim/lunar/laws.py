@@ -3,7 +3,7 @@
 by numpy broadcasting (every argument may be an array of shape (N,)).
 
 The adaptive term of (7) is undefined at z2 = 0 (claim smooth-7); the generated code takes
-||z2|| as an argument and the wrapper passes max(||z2||, 1e-300), which sets the term to 0 at
+||z2|| as an argument and the wrapper passes max(||z2||, 1e-150), which sets the term to 0 at
 z2 = 0 exactly (the value of its numerator there).
 """
 
@@ -16,7 +16,7 @@ import numpy as np
 import sympy as sp
 from lgw.theory.lunar import law as L
 
-TINY = 1e-300
+TINY = 1e-150  # nz^2 must stay a normal float: 1e-300 squared underflows to 0 (0/0)
 
 
 @dataclass(frozen=True)

@@ -81,8 +81,9 @@ def coverage_section(claims: list[Claim]) -> Section:
         judged = ", ".join(f"{i}: {verdicts.get(i, 'not run')}" for i in ids) if ids else \
             "not checkable"
         rows.append((item, judged, note))
-    return Section("Coverage of seed 001", ("item", "claims: verdict", "note"), tuple(rows),
-                   ("Every numbered equation, hypothesis, remark and simulation statement.",))
+    return Section("Coverage of seed 001", columns=("item", "claims: verdict", "note"),
+                   rows=tuple(rows), paragraphs=("Every numbered equation, hypothesis, remark "
+                                                 "and simulation statement.",))
 
 
 def gain_rows(g: Gains) -> tuple[tuple[str, str], ...]:
