@@ -55,7 +55,10 @@ def test_attitude_generated_equals_symbolic():
         vals[S.nz] = float(np.linalg.norm(z2))
         sym = np.array([float(e.subs(vals)) for e in S.uc])
         g = {"K1": K1[:, :, None], "F2": F2[:, :, None], "f3": np.array([0.1])}
-        col = lambda ss: np.array([[vals[s]] for s in ss])  # noqa: E731
+
+        def col(ss, vals=vals):
+            return np.array([[vals[s]] for s in ss])
+
         M, _, _, _ = laws.attitude_command(np.array([q[0]]), col(S.x1), col(S.x2), col(S.lam1),
                                            col(S.lam2), np.array([0.01]), col(S.f2),
                                            J[:, None], g)

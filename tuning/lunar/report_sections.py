@@ -23,7 +23,8 @@ def reference_section() -> Section:
     rows = tuple((k, fmt(v) if not isinstance(v, list) else str([fmt(x) for x in v]))
                  for k, v in {**d, **{f"open loop (1): {k}": v for k, v in ol.items()}}.items())
     return Section("Reference trajectory (3)-(4): linear-tangent BVP",
-                   columns=("quantity", "value"), rows=rows, paragraphs=("Simplified model of seed 001 Section 2 with constant T_d = 24 kN, "
+                   columns=("quantity", "value"), rows=rows, paragraphs=(
+                       "Simplified model of seed 001 Section 2 with constant T_d = 24 kN, "
                           "solved by scipy solve_bvp (initial guess by single shooting, whose "
                           "a2, a3, t_f are listed beside). The open-loop rows fly the full "
                           "model (1) with the same steering and thrust.",))
@@ -50,7 +51,8 @@ def run_scenario(fig_path: Path):
     sec = Section(f"Section 5 scenario (RK4, dt = {P.DT:g} s)",
                   columns=("quantity", "coupled (thrust along the body axis)",
                            "ideal pointing (thrust along the command)"), rows=tuple(rows),
-                  paragraphs=("Coupled: the thrust direction (2) comes from the simulated attitude (27). "
+                  paragraphs=("Coupled: the thrust direction (2) comes from the simulated "
+                              "attitude (27). "
                    "Ideal pointing: the thrust follows the orbit command, the attitude loop "
                    "flies decoupled (the paper treats (22) with u_o as the input).",),
                   image=fig_path.name)
