@@ -71,3 +71,14 @@ def test_section5_full_run_against_solve_ivp_first_20s():
     sol = solve_ivp_case(ctx, X0[:, 0], res.t, rtol=1e-9, atol=1e-9)
     e = _errors(res, 0, sol)
     assert e["r"] < 0.1 and e["V"] < 0.1
+
+
+@pytest.mark.slow
+def test_section5_scenario_claims_have_computed_verdicts():
+    from lgw.sim.lunar.scenario import scenario_claims
+
+    claims = scenario_claims()
+    assert [c.id for c in claims] == ["s5-no-saturation", "s5-d0e", "s5-tracking"]
+    assert all(c.scope == "scenario" for c in claims)
+    # T_max T_a = 23.8 kN < T_d = 24 kN: exact, whatever the simulation
+    assert claims[0].steps[0].status == "refuted"

@@ -6,5 +6,6 @@ the command modules."""
 COMMANDS = {
     "bounds": "the (18) constants beside the true filter L2 gains, and (19)-(21) for a case",
     "simulate": "fly the Section 5 scenario (or random cases): errors, thrust, torque, d0e, V2",
+    "verify": "property campaign: V2 (13), (18), (19), (21a) against measured runs",
     "report": "the derivation report (Markdown, LaTeX, HTML) with every claim's verdict",
 }

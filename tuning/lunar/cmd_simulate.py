@@ -2,7 +2,7 @@
 
     lgw simulate lunar [--gains FILE] [--cases N --seed S] [--pointing coupled|ideal]
         [--failure atan|step|none] [--t-fail S] [--sat-reading commanded|nominal]
-        [--dt S] [--t-end S] [--json] [--out DIR]
+        [--cmd-wn W] [--dt S] [--t-end S] [--json] [--out DIR]
 
 Without --cases: the Section 5 case (h error 100 m, V error [2, 3, 5] m/s, Q0 = [sqrt .8,
 sqrt .2, 0, 0]).  With --cases N: N random cases (height error U(-200, 200) m, velocity error
@@ -44,12 +44,14 @@ def random_cases(n: int, seed: int):
 @click.option("--t-fail", type=float, default=None, help="failure time, s (default t_f/2)")
 @click.option("--sat-reading", type=click.Choice(["commanded", "nominal"]),
               default="commanded", show_default=True, help="the T of (24)")
+@click.option("--cmd-wn", type=float, default=2.0, show_default=True,
+              help="natural frequency of the desired-attitude command filter, rad/s")
 @click.option("--dt", type=float, default=None, help="RK4 step, s (default 0.05)")
 @click.option("--t-end", type=float, default=None, help="end time, s (default t_f)")
 @click.option("--json", "as_json", is_flag=True, help="print the per-case summaries as JSON")
 @click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
               default=None, help="write summary.json and section5.png there")
-def command(gains_path, cases, seed, pointing, failure, t_fail, sat_reading, dt, t_end,
+def command(gains_path, cases, seed, pointing, failure, t_fail, sat_reading, cmd_wn, dt, t_end,
             as_json, out_dir) -> None:
     """Fly seed 001's closed loop: errors, thrust, torque, d0e, saturation, flags."""
     from lgw.theory.lunar import parameters as P
@@ -58,6 +60,8 @@ def command(gains_path, cases, seed, pointing, failure, t_fail, sat_reading, dt,
         raise ParameterError("--cases", cases, "must lie in [0, 100000]")
     if dt is not None and not 0 < dt <= 0.1:
         raise ParameterError("--dt", dt, "must lie in (0, 0.1] s (RK4 stability with F2 = 20)")
+    if not 0 < cmd_wn <= 50:
+        raise ParameterError("--cmd-wn", cmd_wn, "must lie in (0, 50] rad/s")
     if t_end is not None and not t_end > 0:
         raise ParameterError("--t-end", t_end, "must be > 0 s")
     if t_fail is not None and not t_fail >= 0:
@@ -69,7 +73,7 @@ def command(gains_path, cases, seed, pointing, failure, t_fail, sat_reading, dt,
     from lgw.sim.lunar.scenario import summarize
 
     opts = RunOptions(dt=dt or P.DT, t_end=t_end, sat_reading=sat_reading, failure=failure,
-                      t_fail=t_fail, thrust_pointing=pointing)
+                      t_fail=t_fail, thrust_pointing=pointing, cmd_wn=cmd_wn)
     ref = reference()
     if cases == 0:
         n = 1
