@@ -1,7 +1,7 @@
 """``lgw simulate lunar``: fly seed 001's closed loop (Section 5 case, or random cases).
 
     lgw simulate lunar [--gains FILE] [--cases N --seed S] [--pointing coupled|ideal]
-        [--failure atan|step|none] [--t-fail S] [--sat-reading commanded|nominal]
+        [--failure atan|step|none] [--t-fail S] [--ta T] [--sat-reading commanded|nominal]
         [--cmd-wn W] [--dt S] [--t-end S] [--json] [--out DIR]
 
 Without --cases: the Section 5 case (h error 100 m, V error [2, 3, 5] m/s, Q0 = [sqrt .8,
@@ -42,6 +42,8 @@ def random_cases(n: int, seed: int):
 @click.option("--failure", type=click.Choice(["atan", "step", "none"]), default="atan",
               show_default=True, help="(26) as printed, a step to 70%, or no failure")
 @click.option("--t-fail", type=float, default=None, help="failure time, s (default t_f/2)")
+@click.option("--ta", type=float, default=0.7, show_default=True,
+              help="thrust fraction left after the failure, T_a of (26)")
 @click.option("--sat-reading", type=click.Choice(["commanded", "nominal"]),
               default="commanded", show_default=True, help="the T of (24)")
 @click.option("--cmd-wn", type=float, default=2.0, show_default=True,
@@ -51,8 +53,8 @@ def random_cases(n: int, seed: int):
 @click.option("--json", "as_json", is_flag=True, help="print the per-case summaries as JSON")
 @click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
               default=None, help="write summary.json and section5.png there")
-def command(gains_path, cases, seed, pointing, failure, t_fail, sat_reading, cmd_wn, dt, t_end,
-            as_json, out_dir) -> None:
+def command(gains_path, cases, seed, pointing, failure, t_fail, ta, sat_reading, cmd_wn, dt,
+            t_end, as_json, out_dir) -> None:
     """Fly seed 001's closed loop: errors, thrust, torque, d0e, saturation, flags."""
     from lgw.theory.lunar import parameters as P
 
@@ -60,6 +62,8 @@ def command(gains_path, cases, seed, pointing, failure, t_fail, sat_reading, cmd
         raise ParameterError("--cases", cases, "must lie in [0, 100000]")
     if dt is not None and not 0 < dt <= 0.1:
         raise ParameterError("--dt", dt, "must lie in (0, 0.1] s (RK4 stability with F2 = 20)")
+    if not 0 < ta <= 1:
+        raise ParameterError("--ta", ta, "must lie in (0, 1]")
     if not 0 < cmd_wn <= 50:
         raise ParameterError("--cmd-wn", cmd_wn, "must lie in (0, 50] rad/s")
     if t_end is not None and not t_end > 0:
@@ -73,7 +77,8 @@ def command(gains_path, cases, seed, pointing, failure, t_fail, sat_reading, cmd
     from lgw.sim.lunar.scenario import summarize
 
     opts = RunOptions(dt=dt or P.DT, t_end=t_end, sat_reading=sat_reading, failure=failure,
-                      t_fail=t_fail, thrust_pointing=pointing, cmd_wn=cmd_wn)
+                      t_fail=t_fail, Ta=ta, thrust_pointing=pointing,
+                      cmd_wn=cmd_wn)
     ref = reference()
     if cases == 0:
         n = 1
