@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from lgw.sim.lunar import laws
 from lgw.sim.lunar import plant as PL
-from lgw.sim.lunar.reference import Reference
+from lgw.sim.lunar.reference import Reference, simplified_rhs
 from lgw.theory.lunar import parameters as P
 from lgw.theory.lunar.gains import Gains, LoopGains
 
@@ -177,7 +177,10 @@ def field(t: float, X: np.ndarray, ctx: Context, outputs: bool = False):
                          pfdd[None]], axis=0)
     if not outputs:
         return Xd
-    out = {"eh": eh, "ev": ev, "eq": eQ, "ew": ew, "thrust": T,
+    # the lumped disturbance of (22b), d_o = e_v' - B0 u_o = e_v' + u_o/m, along the run
+    Vd_dot = simplified_rhs(t, rs, ctx.ref.a1, ctx.ref.a2, ctx.ref.a3)[1:4]
+    d_o = (ydot[3:6] - Vd_dot[:, None]) + (T * n_act - unorm) / m
+    out = {"eh": eh, "ev": ev, "d_orbit": d_o, "eq": eQ, "ew": ew, "thrust": T,
            "thrust_cmd": np.linalg.norm(uco + unorm, axis=0), "torque": M, "torque_cmd": Mc,
            "orbit_saturated": np.linalg.norm(uco + unorm, axis=0) >= o.thrust_max,
            "torque_saturated": np.any(np.abs(Mc) >= o.torque_max, axis=0),
