@@ -65,12 +65,20 @@ def test_case_below_the_surface_is_flagged_not_dropped():
 
 
 @pytest.mark.slow
-def test_section5_full_run_against_solve_ivp_first_20s():
-    ctx, X0 = section5_case(opts=RunOptions(t_end=20.0))
-    res = rk4_batch(ctx, X0, record_every=20)
-    sol = solve_ivp_case(ctx, X0[:, 0], res.t, rtol=1e-9, atol=1e-9)
-    e = _errors(res, 0, sol)
-    assert e["r"] < 0.1 and e["V"] < 0.1
+def test_section5_first_20s_against_solve_ivp_converges():
+    # Over 20 s the saturations make the loop sensitive: measured errors at dt = 0.05 / 0.025 /
+    # 0.0125 s were r 0.51 / 0.036 / 0.0017 m and V 0.19 / 0.12 / 0.0068 m/s.
+    errs = []
+    sol = None
+    for dt in (0.05, 0.0125):
+        ctx, X0 = section5_case(opts=RunOptions(t_end=20.0, dt=dt))
+        res = rk4_batch(ctx, X0, record_every=int(round(1.0 / dt)))
+        if sol is None:
+            sol = solve_ivp_case(ctx, X0[:, 0], res.t, rtol=1e-9, atol=1e-9)
+        errs.append(_errors(res, 0, sol))
+    assert errs[0]["r"] < 1.0 and errs[0]["V"] < 0.5
+    assert errs[1]["r"] < 0.01 and errs[1]["V"] < 0.02
+    assert errs[1]["r"] < errs[0]["r"] and errs[1]["V"] < errs[0]["V"]
 
 
 @pytest.mark.slow
