@@ -1,0 +1,26 @@
+"""``lgw report lunar --no-scenario`` writes the three formats with every theory claim's verdict
+and the coverage table."""
+
+from click.testing import CliRunner
+from lgw.theory.lunar.claims import theory_claims
+from lgw.theory.lunar.coverage import COVERAGE
+from lgw.tuning.lunar.cmd_report import command
+
+
+def test_report_without_scenario(tmp_path):
+    r = CliRunner().invoke(command, ["--out", str(tmp_path), "--no-scenario"])
+    assert r.exit_code == 0, r.output
+    md = (tmp_path / "report.md").read_text()
+    for c in theory_claims():
+        assert f"| [{c.id}](#{c.id}) |" in md and f"**{c.verdict}**" in md
+    assert "## Coverage of seed 001" in md
+    assert md.count("\n| ") >= len(COVERAGE)
+    assert (tmp_path / "report.tex").read_text().startswith("\\documentclass")
+    assert "<html>" in (tmp_path / "report.html").read_text()
+
+
+def test_coverage_names_only_existing_claims():
+    ids = {c.id for c in theory_claims()} | {"s5-no-saturation", "s5-d0e", "s5-tracking"}
+    for item, claims, note in COVERAGE:
+        assert set(claims) <= ids, item
+        assert claims or note, item  # "not checkable" items say why

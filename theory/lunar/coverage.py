@@ -1,0 +1,52 @@
+"""Coverage of seed 001: every numbered equation, hypothesis, remark and simulation statement,
+mapped to the claims that judge it or to the reason it is not checkable."""
+
+from __future__ import annotations
+
+COVERAGE: tuple[tuple[str, tuple[str, ...], str], ...] = (
+    ("(1) polar translational dynamics", ("orbit-22-23",),
+     "implemented in sim/lunar/plant.py; open-loop flight against the reference in docs"),
+    ("(2) thrust vector from the attitude", ("orbit-22-23",), "sim: thrust along the body axis"),
+    ("(3) linear-tangent steering", (), "not a claim: solved as a BVP (sim/lunar/reference.py); "
+     "coefficients and t_f in the report"),
+    ("(4) closed-form reference polynomials", (),
+     "not checkable: coefficients u_i, w_i, h_i are never given; the BVP solution replaces it"),
+    ("(5) general system", ("V2dot", "B0-rank"), ""),
+    ("(6) u = f_a(sat(u_c))", ("sat-24", "failure-26"), ""),
+    ("(7) command", ("V2dot", "smooth-7", "B0-rank"), ""),
+    ("(8) update law", ("V2dot", "s5-d0e"), ""),
+    ("(9) transformation", ("V2dot", "transient-21"), ""),
+    ("(10) virtual control, F1 positive definite", ("V2dot", "attitude-F1"), ""),
+    ("(11) virtual states", ("V2dot", "Vlambda-16-17", "L2-18"), ""),
+    ("(12) V2", ("V2dot",), "d^_0 = d0e - ||d|| read with a constant bound (remark in V2dot)"),
+    ("(13) V2' inequality", ("V2dot",), ""),
+    ("hypothesis: f1 C^1, f2 smooth, d bounded", ("smooth-7", "V2dot"), ""),
+    ("hypothesis: 0 < f3 < f2bar, f2bar > 1/2, q > 0", ("V2dot", "Vlambda-16-17"),
+     "enforced by the gains loader (ParameterError)"),
+    ("(14) LaSalle-Yoshizawa conclusions", ("LaSalle-14",), ""),
+    ("x1, x2 -> 0 when du = 0", ("LaSalle-14",), "remark in LaSalle-14"),
+    ("(15)-(16) Vlambda and its derivative", ("Vlambda-16-17",), ""),
+    ("(17) Young bound", ("Vlambda-16-17",), ""),
+    ("(18) L2 bounds on lambda", ("L2-18",), "with python-control H-infinity gains"),
+    ("(19) L2 bounds on z", ("L2-19-20",), ""),
+    ("(20) V2(0), z2(0), A1", ("L2-19-20",), "A1 undefined: read -K1"),
+    ("(21) transient bounds", ("transient-21",), "c2bar undefined: read f2bar - 1/2"),
+    ("remark: larger f1bar, f2bar improve performance", (),
+     "not checkable as stated (no performance measure); the bounds (18)-(21) decrease in "
+     "f1bar, f2bar by their formulas"),
+    ("remark: for large f1bar, f2bar, x1, x2 -> 0", (),
+     "not checkable: contradicts (18) under a persistent du, which bounds lambda only in L2"),
+    ("(22) orbit error equations", ("orbit-22-23",), ""),
+    ("(23) u_o", ("orbit-22-23",), ""),
+    ("(24) thrust saturation", ("sat-24",), "T read as |u_co + u_norm|"),
+    ("(25) u_norm", ("orbit-22-23",), ""),
+    ("(26) failure model", ("failure-26", "s5-no-saturation"), ""),
+    ("(27a) error kinematics", ("attitude-27a",), ""),
+    ("(27b) error dynamics C_r, n_r, n_do", ("attitude-27b",), ""),
+    ("(28) torque saturation", (), "implemented (np.clip per axis); a definition, no claim"),
+    ("Section 5: no orbit saturation after the failure", ("s5-no-saturation",), ""),
+    ("Section 5: d0e about 20 N m", ("s5-d0e",), ""),
+    ("Section 5: tracking maintained", ("s5-tracking",), ""),
+    ("Fig. 2, Fig. 3 curves", (), "not checkable: no data, only the shapes; our runs are in "
+     "the report figure"),
+)

@@ -1,0 +1,50 @@
+"""``lgw report lunar``: the derivation report of seed 001 (Markdown, LaTeX, HTML)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+from lgw.tuning.lunar.options import resolve_gains
+from lgw.tuning.options import gains_option
+
+
+@click.command("lunar")
+@gains_option
+@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
+              required=True, help="directory to write report.md, report.tex, report.html")
+@click.option("--scenario/--no-scenario", "with_scenario", default=True, show_default=True,
+              help="fly the Section 5 case (coupled and ideal pointing, ~2-4 min) for the "
+                   "scenario claims, the measured L2 norms and the figure")
+def command(gains_path: Path | None, out_dir: Path, with_scenario: bool) -> None:
+    """Derive and check every claim of seed 001 and write the report."""
+    g = resolve_gains(gains_path)  # validated before anything is written
+    from lgw.theory.lunar.claims import all_claims
+    from lgw.theory.lunar.report import coverage_section, render_view, report_spec
+    from lgw.theory.report import render_html, render_latex, render_markdown
+    from lgw.tuning.lunar.report_sections import bounds_table, reference_section, run_scenario
+
+    sections, scenario, figure = [reference_section()], [], None
+    measured = None
+    if with_scenario:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        scenario, sec, measured = run_scenario(out_dir / "section5.png")
+        sections.append(sec)
+        figure = "section5.png"
+    claims = all_claims(scenario)
+    sections.append(coverage_section(claims))
+    bounds, note = bounds_table(g, measured)
+    spec = report_spec(g, bounds, note)
+    views = [render_view(c) for c in claims]
+    docs = {"report.md": render_markdown(views, spec, sections),
+            "report.tex": render_latex(views, spec, sections),
+            "report.html": render_html(views, spec, sections)}
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for name, text in docs.items():
+        (out_dir / name).write_text(text)
+    counts: dict[str, int] = {}
+    for c in claims:
+        counts[c.verdict] = counts.get(c.verdict, 0) + 1
+    click.echo(f"wrote {', '.join(str(out_dir / n) for n in docs)}"
+               + (f", {out_dir / figure}" if figure else ""))
+    click.echo("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
