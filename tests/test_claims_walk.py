@@ -39,7 +39,9 @@ def systems() -> list[str]:
 def claims_of(system: str) -> list[Claim]:
     mod = importlib.import_module(f"lgw.theory.{system}.claims")
     fn = mod.all_claims
-    if inspect.signature(fn).parameters:
+    required = [p for p in inspect.signature(fn).parameters.values()
+                if p.default is inspect.Parameter.empty]
+    if required:  # claims judged for a gain set: the system's built-in gains
         gains_mod = importlib.import_module(f"lgw.theory.{system}.gains")
         return fn(gains_mod.default_gains())
     return fn()
