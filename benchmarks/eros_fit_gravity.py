@@ -58,7 +58,8 @@ def main() -> None:
     for x0 in ([0.5, 6e3, 0, 0, -6e3, 0, 0], [0.5, 8e3, 1e3, 0, -4e3, -1e3, 0],
                [0.3, 10e3, 0, 0, -3e3, 0, 0]):
         sol = least_squares(residuals, np.array(x0, float), args=(pts, g_ref),
-                            bounds=([0.01] + [-2e4] * 6, [0.99] + [2e4] * 6), x_scale=[0.1] + [1e3] * 6)
+                            bounds=([0.01] + [-2e4] * 6, [0.99] + [2e4] * 6),
+                            x_scale=[0.1] + [1e3] * 6)
         if best is None or sol.cost < best.cost:
             best = sol
     rel = np.linalg.norm(residuals(best.x, pts, g_ref).reshape(-1, 3), axis=1)

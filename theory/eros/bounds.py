@@ -11,8 +11,6 @@ The printed (5) and (7) are these with p and q exchanged (negative for p < q).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from scipy.optimize import brentq
 
@@ -33,9 +31,10 @@ def ts_ftsm(e0, alpha: float, beta: float, r: float):
 
 
 def ts_ftsm_printed(e0, alpha: float, beta: float, p: float, q: float):
-    """Seed 002 eq. (7) as printed: p/(alpha(p-q)) (ln(alpha e0^((p-q)/p) + beta) - ln beta)."""
-    return p / (alpha * (p - q)) * (np.log(alpha * np.abs(e0) ** ((p - q) / p) + beta)
-                                    - math.log(beta))
+    """Seed 002 eq. (7) as printed: p/(alpha(p-q)) (ln(alpha e0^((p-q)/p) + beta) - ln beta),
+    evaluated as p/(alpha(p-q)) log1p(alpha e0^((p-q)/p)/beta) (the same number, without the
+    cancellation of the two logarithms)."""
+    return p / (alpha * (p - q)) * np.log1p(alpha * np.abs(e0) ** ((p - q) / p) / beta)
 
 
 def t_pd(e0, lam: float, tol: float):
