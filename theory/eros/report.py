@@ -33,13 +33,13 @@ REFERENCES = (
 )
 
 BOUND_LABELS = (
-    ("s0", "s(0) of (6)", "m/s"), ("t_reach", "reaching time |s0|/(k - dbar)", "s"),
-    ("e_max_reaching", "|e| bound during reaching", "m"),
+    ("s0", "s(0) of (6)", "m/s"), ("t_reach", "reaching time abs(s0)/(k - dbar)", "s"),
+    ("e_max_reaching", "abs(e) bound during reaching", "m"),
     ("t_slide", "sliding settling time (6), derived", "s"),
     ("t_total", "reaching + sliding bound", "s"),
     ("ts_tsm", "(5) derived t_s", "s"), ("ts_tsm_printed", "(5) as printed", "s"),
     ("ts_ftsm", "(7) derived t_s", "s"), ("ts_ftsm_printed", "(7) as printed", "s"),
-    ("t_pd", "PD surface: time to |e| <= TRACK_TOL", "s"),
+    ("t_pd", "PD surface: time to abs(e) <= TRACK_TOL", "s"),
 )
 
 
