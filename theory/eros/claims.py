@@ -69,8 +69,9 @@ def ode_settling_time(e0v: float, alpha_v: float, beta_v: float, rv: float) -> f
     t_ev = float(sol.t_events[0][0])
     # the tail from 1e-9 e0 to 0 by adaptive quadrature of dt = de / (alpha e + beta e^r)
     # (integrable singularity e^-r at 0; no closed form used)
-    tail = quad(lambda x: 1.0 / (alpha_v * x + beta_v * x**rv), 0.0, 1e-9 * e0v,
-                epsabs=0.0, epsrel=1e-10, limit=200)[0]
+    # (QAWS: the weight x^-r is integrated exactly, the rest 1/(alpha x^(1-r) + beta) is smooth)
+    tail = quad(lambda x: 1.0 / (alpha_v * x ** (1.0 - rv) + beta_v), 0.0, 1e-9 * e0v,
+                weight="alg", wvar=(-rv, 0.0), epsabs=0.0, epsrel=1e-8, limit=400)[0]
     return t_ev + tail
 
 
