@@ -65,3 +65,10 @@ def test_tune_meets_target_on_a_fresh_campaign(tmp_path):
     from lgw.theory.eros.gains import load_gains
 
     load_gains(out)  # the written file round-trips through the validator
+
+
+def test_verify_no_violation_small_campaign():
+    r = lgw("verify", "eros", "--cases", "12", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["violations"] == 0 and out["worst_margin_s"] >= 0 and out["nonfinite"] == 0

@@ -723,6 +723,45 @@ def reference_claim() -> Claim:
                                            "g_max": float(gnorm.max())})
 
 
+def surface_altitude(pt: np.ndarray, tol: float = 0.5) -> float:
+    """Height (m) of an outside point above the shape model along the ray from the centroid
+    (bisection on the solid-angle inside test)."""
+    from lgw.theory.eros.polyhedron import eros_polyhedron, inside
+
+    E_ = eros_polyhedron()
+    lo, hi = 0.0, 1.0
+    while (hi - lo) * np.linalg.norm(pt) > tol:
+        mid = 0.5 * (lo + hi)
+        if inside(E_, mid * pt[None])[0]:
+            lo = mid
+        else:
+            hi = mid
+    return float((1.0 - hi) * np.linalg.norm(pt))
+
+
+LANDING_TOL = 10.0  # m, chosen: "on the surface" within the shape model's resolution (~200 m
+#                     edges at this scale would be generous; 10 m is a touchdown tolerance)
+
+
+@cache
+def landing_point_claim() -> Claim:
+    from lgw.theory.eros.polyhedron import eros_polyhedron, inside
+
+    h = surface_altitude(P.RF)
+    below = P.RF * (1.0 - (h - LANDING_TOL) / np.linalg.norm(P.RF))
+    still_out = not bool(inside(eros_polyhedron(), below[None])[0])
+    w = Witness({"RF_m": P.RF.tolist(), "altitude_m": h, "tolerance_m": LANDING_TOL},
+                LANDING_TOL - h, "bisection on the solid-angle inside test along the ray",
+                -1.0 if still_out else 1.0, "the point h - 10 m below RF on the ray is still "
+                "outside (total solid angle 0): margin -1 if so", SEED)
+    step = Step("Table 1's landing position lies on the asteroid's surface",
+                Search({"RF": "Table 1"}, "ray bisection", 1, w.margin, w.point, SEED, w))
+    return Claim("landing-point", "Table 1, Fig. 12", "Where the landing point is",
+                 "landing position [2837 928.1 5708] m", f"it lies {h:.0f} m above the shape "
+                 "model (measured volume, centroid frame, long axis x): the reference ends in "
+                 "a hover, not a touchdown", (step,), numbers={"altitude_m": h})
+
+
 # --- (1), (2), Table 1 --------------------------------------------------------------------------
 
 @cache
@@ -792,6 +831,7 @@ def all_claims() -> list[Claim]:
     cond, paper = fuzzy_claim()
     return [dynamics_claim(), gravity_claim(), mass_claim(), settling_tsm_claim(),
             growth_claim(), settling_ftsm_claim(), settling_ode_claim(), ftsm_faster_claim(),
-            cubic_claim(), reference_claim(), sdot_claim(), ueq_claim(), lyapunov_claim(),
+            cubic_claim(), reference_claim(), landing_point_claim(), sdot_claim(), ueq_claim(),
+            lyapunov_claim(),
             printed_exponent_claim(), singular_claim(), reaching_claim(), reaching_tanh_claim(),
             cond, paper, fuzzy_finite_time_claim(), fuzzy_invariance_claim(), pd_claim()]

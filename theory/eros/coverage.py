@@ -4,7 +4,7 @@ that check it or to the reason it cannot be checked."""
 from __future__ import annotations
 
 COVERAGE: tuple[tuple[str, str, tuple[str, ...], str], ...] = (
-    ("Table 1", "constants", ("table1-constants", "dynamics-1", "cubic-9-10"),
+    ("Table 1", "constants", ("table1-constants", "dynamics-1", "cubic-9-10", "landing-point"),
      "the start and end states feed the cubic"),
     ("(1)", "rotating-frame dynamics", ("dynamics-1",), ""),
     ("(2)", "two-mass-point gravity", ("gravity-2",), "the masses and positions are fitted "
@@ -38,7 +38,8 @@ COVERAGE: tuple[tuple[str, str, tuple[str, ...], str], ...] = (
     ("Fig. 7", "fuzzy coefficients a, b", ("fuzzy-condition",), "a, b as functions of D"),
     ("Table 2", "absolute error", ("abs-error-sign", "abs-error-tanh"), "metric: sum over the "
      "0.01 s samples and axes of |e_i|; the paper does not define its metric"),
-    ("Fig. 12", "8000 s landing", ("reference-shape",), "path vs the shape model (the landing "
+    ("Fig. 12", "8000 s landing", ("reference-shape", "landing-point"),
+     "path vs the shape model (the landing "
      "point is 614 m above the surface); the closed-loop 8000 s run is not made by default "
      "(lgw simulate eros --t-final 8000)"),
     ("PD-SMC", "the classic PD sliding mode", ("pd-smc",), ""),
