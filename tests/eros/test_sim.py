@@ -14,16 +14,25 @@ from lgw.theory.errors import ParameterError
 
 @pytest.mark.parametrize("law,switch", SL.VARIANTS)
 def test_generated_matches_symbolic(law, switch):
-    g = default_gains()
+    # all gains distinct, so a swapped argument order cannot pass
+    g = default_gains().replace(alpha=0.7, beta=1.3, p=5, q=7, k=1.7, lam=0.9, N=4.0, M=6.0,
+                                phi=0.08, e_floor=2e-4)
     rng = np.random.default_rng(hash((law, switch)) % 2**32)
     expr = L.control(law, switch, floor=True)
-    gv = dict(zip(SL.GAIN_ARGS, SL.gain_values(g), strict=True))
+    gv = {L.alpha: g.alpha, L.beta: g.beta, L.r: sp.Rational(g.p, g.q), L.k: g.k, L.lam: g.lam,
+          L.N: g.N, L.M: g.M, L.phi: g.phi, L.eps: g.e_floor}  # not via SL.gain_values
     for _ in range(2):
         e = rng.uniform(-3, 3, (1, 3))
         e[0, 2] = 3e-5  # inside the |e| floor on one axis
         ed, f, Dk, xdd = (rng.uniform(-1, 1, (1, 3)) for _ in range(4))
         u, s = SL.evaluate(law, switch, e, ed, f, Dk, xdd, g)
-        d = float(SL.distance_fn()(*s[0], g.alpha)) if law == "fuzzy" else 0.0
+        d = 0.0
+        if law == "fuzzy":  # (21)-(22) by hand: D = |s| / sqrt(1 + alpha^2)
+            sv = ed[0] + g.alpha * e[0] + g.beta * np.sign(e[0]) * np.abs(e[0]) ** g.r
+            if law == "pdsmc":
+                sv = ed[0] + g.lam * e[0]
+            assert np.allclose(s[0], sv, rtol=1e-12)
+            d = float(np.linalg.norm(sv) / np.sqrt(1 + g.alpha**2))
         for i in range(3):
             vals = {L.e: e[0, i], L.ed: ed[0, i], L.f: f[0, i], L.Dk: Dk[0, i],
                     L.xdd: xdd[0, i], L.dist: d, **gv}
