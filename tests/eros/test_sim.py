@@ -83,3 +83,26 @@ def test_bad_input():
         assert ex.value.name.endswith(key)
     with pytest.raises(ParameterError, match="unknown key"):
         gains_from_dict({"gains": dict(d["gains"], kk=1)})
+
+
+def test_polyhedral_plant_runs_and_stays_close_to_the_two_point_model():
+    from lgw.sim.eros import plant as PL
+    from lgw.theory.eros import parameters as P
+
+    g2 = PL.gravity(P.R0[None], "two-point")[0]
+    gp = PL.gravity(P.R0[None], "polyhedron")[0]
+    assert np.linalg.norm(g2 - gp) <= P.TWO_POINT_FIT_MAX * np.linalg.norm(gp)
+    r = simulate(np.array([[1.0, 0, 0]]), np.zeros((1, 3)), default_gains(),
+                 SimOptions(t_final=0.05, gravity="polyhedron"))
+    assert np.all(np.isfinite(r.e)) and not r.nonfinite[0]
+
+
+def test_rotating_terms_match_the_vector_form():
+    from lgw.sim.eros import plant as PL
+    from lgw.theory.eros import parameters as P
+
+    rng = np.random.default_rng(4)
+    pos, vel = rng.normal(size=(5, 3)) * 1e3, rng.normal(size=(5, 3))
+    W = np.array([0, 0, P.OMEGA])
+    want = -2 * np.cross(W, vel) - np.cross(W, np.cross(W, pos))
+    assert np.allclose(PL.rotating_terms(pos, vel), want, rtol=1e-12, atol=1e-18)
