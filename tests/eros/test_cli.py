@@ -72,3 +72,17 @@ def test_verify_no_violation_small_campaign():
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert out["violations"] == 0 and out["worst_margin_s"] >= 0 and out["nonfinite"] == 0
+
+
+def test_report_no_sim_writes_every_format(tmp_path):
+    out = tmp_path / "rep"
+    r = lgw("report", "eros", "--out", str(out), "--no-sim")
+    assert r.returncode == 0, r.stderr
+    for name in ("report.md", "report.tex", "report.html", "claims.json"):
+        assert (out / name).stat().st_size > 1000
+    claims = json.loads((out / "claims.json").read_text())
+    md = (out / "report.md").read_text()
+    for c in claims:  # every claim in the verdict table with its computed verdict
+        assert f"[{c['id']}](#{c['id']})" in md
+        assert c["verdict"] in ("proved", "proved-given", "checked", "unproven", "refuted")
+    assert "Coverage of seed 002" in md
