@@ -689,7 +689,8 @@ def cubic_claim() -> Claim:
                  + " m (x, y, z) and the end velocity by " + ", ".join(
                      f"{v:+.2e}" for v in miss["velocity_m_s"]) + " m/s",
                  tuple(steps), numbers={"exact": [[str(x) for x in row] for row in exact],
-                                        "exact_float": REF.coefficients().tolist(), **miss})
+                                        "exact_float": REF.coefficients().tolist(), **miss},
+                 scope="scenario")
 
 
 @cache
@@ -720,7 +721,7 @@ def reference_claim() -> Claim:
                  (z_ok, outside), numbers={"turning_times_s": turn,
                                            "max_ref_accel": float(anorm.max()),
                                            "g_min": float(gnorm.min()),
-                                           "g_max": float(gnorm.max())})
+                                           "g_max": float(gnorm.max())}, scope="scenario")
 
 
 def surface_altitude(pt: np.ndarray, tol: float = 0.5) -> float:
@@ -759,7 +760,7 @@ def landing_point_claim() -> Claim:
     return Claim("landing-point", "Table 1, Fig. 12", "Where the landing point is",
                  "landing position [2837 928.1 5708] m", f"it lies {h:.0f} m above the shape "
                  "model (measured volume, centroid frame, long axis x): the reference ends in "
-                 "a hover, not a touchdown", (step,), numbers={"altitude_m": h})
+                 "a hover, not a touchdown", (step,), numbers={"altitude_m": h}, scope="scenario")
 
 
 # --- (1), (2), Table 1 --------------------------------------------------------------------------
@@ -823,7 +824,7 @@ def mass_claim() -> Claim:
     return Claim("table1-constants", "Table 1", "Table 1 constants",
                  "mass 6.69e5 kg, average radius 16000 m",
                  f"measured mass 6.687e15 kg (1e10 x); mean radius {P.R_MEAN:.0f} m (16 km is "
-                 "the NEAR gravity field's reference radius)", (step, rad))
+                 "the NEAR gravity field's reference radius)", (step, rad), scope="scenario")
 
 
 def all_claims() -> list[Claim]:

@@ -8,14 +8,20 @@ as the other without changing any verdict: every string is read off the evidence
 
 from __future__ import annotations
 
+import inspect
+import json
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from lgw.theory import report as R
 from lgw.theory.eros import bounds as B
 from lgw.theory.eros import parameters as P
+from lgw.theory.eros.coverage import COVERAGE
+from lgw.theory.eros.coverage import rows as coverage_rows
 from lgw.theory.eros.gains import Gains
 from lgw.theory.evidence import Claim
-from lgw.theory.report import ReportSpec, fmt
+from lgw.theory.report import ReportSpec, Section, fmt
 
 REFERENCES = (
     "Seed 002: M. Azadmanesh, J. Roshanian, M. Hassanalian, A fuzzy fast terminal approach for "
@@ -112,3 +118,26 @@ def report_spec(g: Gains, bounds: dict[str, dict[str, float]]) -> ReportSpec:
             "continuous-time control; the printed (5) and (7) are negative (claims settling-*).")
     return ReportSpec("Seed 002 (433 Eros, fuzzy FTSMC)", rows, tuple(gain_warnings(g)),
                       BOUND_LABELS, ("x", "y", "z"), bounds, REFERENCES, note)
+
+
+def render_documents(claims: Sequence[Claim], spec: ReportSpec,
+                     sections: Sequence[Section] = ()) -> dict[str, str]:
+    """report.md / .tex / .html and claims.json, through whichever renderer signature
+    ``lgw.theory.report`` has: the current one (claims.Claim attributes: ``render_view``, the
+    coverage as a section) or the evidence-native one with ``coverage=`` (CoverageRow)."""
+    fns = (("report.md", R.render_markdown), ("report.tex", R.render_latex),
+           ("report.html", R.render_html))
+    if "coverage" in inspect.signature(R.render_markdown).parameters:
+        row = R.CoverageRow
+        cov = [row(item, what, ids) if ids else
+               row(item, what, (), note.removeprefix("not checkable, because "))
+               for item, what, ids, note in COVERAGE]
+        docs = {n: f(list(claims), spec, sections, coverage=cov) for n, f in fns}
+    else:
+        cov_sec = Section("Coverage of seed 002", ("Every numbered item mapped to claims or to "
+                                                   "why it cannot be checked.",),
+                          ("item", "what", "claims / reason"), coverage_rows())
+        views = [render_view(c) for c in claims]
+        docs = {n: f(views, spec, (*sections, cov_sec)) for n, f in fns}
+    docs["claims.json"] = json.dumps([c.to_dict() for c in claims], indent=1) + "\n"
+    return docs

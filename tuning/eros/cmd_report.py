@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import click
@@ -23,9 +22,8 @@ def command(gains_path: Path | None, out_dir: Path, with_sim: bool, cases: int,
             seed: int) -> None:
     """Derive and check every claim of seed 002 and write the report for a gain set."""
     from lgw.theory.eros.claims import all_claims
-    from lgw.theory.eros.report import axis_bounds, render_view, report_spec
+    from lgw.theory.eros.report import axis_bounds, render_documents, report_spec
     from lgw.theory.errors import ParameterError
-    from lgw.theory.report import render_html, render_latex, render_markdown
     from lgw.tuning.eros import report_sections as RS
 
     g = resolve_gains(gains_path)
@@ -43,13 +41,7 @@ def command(gains_path: Path | None, out_dir: Path, with_sim: bool, cases: int,
         mc = monte_carlo(g, cases, seed, base)
         claims += scenario_claims(g, base, scen, mc)
         sections += RS.table2_sections(scen, table(mc[1]), cases)
-    sections.append(RS.coverage_section())
-    views = [render_view(c) for c in claims]
-    spec = report_spec(g, axis_bounds(g))
-    docs = {"report.md": render_markdown(views, spec, sections),
-            "report.tex": render_latex(views, spec, sections),
-            "report.html": render_html(views, spec, sections),
-            "claims.json": json.dumps([c.to_dict() for c in claims], indent=1) + "\n"}
+    docs = render_documents(claims, report_spec(g, axis_bounds(g)), sections)
     out_dir.mkdir(parents=True, exist_ok=True)
     for name, text in docs.items():
         (out_dir / name).write_text(text)

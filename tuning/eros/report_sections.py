@@ -7,7 +7,6 @@ from lgw.theory.eros import bounds as B
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros import reference as REF
 from lgw.theory.eros.claims import ode_settling_time
-from lgw.theory.eros.coverage import rows as coverage_rows
 from lgw.theory.report import Section
 
 SETTLING_TABLE = ((1, 3, 1.0, 1.0, 5.0), (3, 5, 1.0, 1.0, 5.0), (3, 5, 0.5, 2.0, 0.01),
@@ -66,11 +65,3 @@ def table2_sections(scen: dict, mc_table: list[dict], n: int) -> list[Section]:
             "as the decimal point): fuzzy 113.4, FTSMC 139.6, PD 244.8 for an unpublished offset.")
     return [Section("Scenario (15 s, offset 5 m per axis, known D)", (note,), cols, srows),
             Section(f"Monte Carlo campaign ({n} cases): mean / max", (note,), cols, mrows)]
-
-
-def coverage_section() -> Section:
-    return Section("Coverage of seed 002", ("Every numbered item mapped to claims or to why it "
-                                            "cannot be checked.",),
-                   ("item", "what", "claims / reason"), coverage_rows())
-
-
