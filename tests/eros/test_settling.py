@@ -80,3 +80,19 @@ def test_envelope_bound_is_the_corner():
     for _ in range(200):
         e0, ed0 = rng.uniform(-10, 10), rng.uniform(-0.5, 0.5)
         assert B.axis_time_bound(e0, ed0, g)["t_total"] <= worst + 1e-12
+
+
+@given(kdt_phi=st.floats(0.05, 1.9), s0=st.floats(-5, 5))
+def test_sampled_tanh_settles_below_the_stability_limit(kdt_phi, s0):
+    from lgw.theory.eros.claims import _tanh_map_tail
+
+    phi, k = 0.05, 2.0
+    assert _tanh_map_tail(k, phi, kdt_phi * phi / k, s0, n=4000) < 1e-6
+
+
+@given(kdt_phi=st.floats(2.2, 10), s0=st.floats(0.01, 5))
+def test_sampled_tanh_limit_cycle_above_it(kdt_phi, s0):
+    from lgw.theory.eros.claims import _tanh_map_tail
+
+    phi, k = 0.05, 2.0
+    assert _tanh_map_tail(k, phi, kdt_phi * phi / k, s0) > 1e-3 * phi
