@@ -106,3 +106,22 @@ def test_rotating_terms_match_the_vector_form():
     W = np.array([0, 0, P.OMEGA])
     want = -2 * np.cross(W, vel) - np.cross(W, np.cross(W, pos))
     assert np.allclose(PL.rotating_terms(pos, vel), want, rtol=1e-12, atol=1e-18)
+
+
+@pytest.mark.parametrize("law", ["ftsmc", "pdsmc"])
+def test_sampled_reaching_within_bound_unknown_disturbance(law):
+    """The full sampled-data loop with D unknown (|D_i| <= DIST_AMP < k): every axis reaches
+    its surface no later than |s0|/(k - dbar) plus two samples (the hold's O(dt) lag)."""
+    from lgw.sim.eros.campaign import offsets
+    from lgw.theory.eros import bounds as B
+    from lgw.theory.eros import parameters as P
+
+    g = default_gains()
+    e0, ed0, ph = offsets(60, 5)
+    s0 = ed0 + (g.lam * e0 if law == "pdsmc" else g.alpha * e0 + g.beta * np.sign(e0)
+                * np.abs(e0) ** g.r)
+    bound = B.t_reach_sign(s0, g.k, P.DIST_AMP)
+    opts = SimOptions(law=law, switch="sign", disturbance="unknown",
+                      t_final=float(bound.max()) + 0.5)
+    m = metrics(simulate(e0, ed0, g, opts, ph))
+    assert np.all(m["t_reach"] <= bound + 2 * opts.dt)
