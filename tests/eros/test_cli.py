@@ -74,6 +74,7 @@ def test_verify_no_violation_small_campaign():
     assert out["violations"] == 0 and out["worst_margin_s"] >= 0 and out["nonfinite"] == 0
 
 
+@pytest.mark.slow
 def test_report_no_sim_writes_every_format(tmp_path):
     out = tmp_path / "rep"
     r = lgw("report", "eros", "--out", str(out), "--no-sim")
