@@ -72,10 +72,20 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
             row["ed_final"] = m["ed_final"][0].tolist()
         rows.append(row)
     if as_json:
+        # strict JSON: a time that never happened (inf / NaN, e.g. never tracked) is null
+        def clean(x):
+            if isinstance(x, float) and not np.isfinite(x):
+                return None
+            if isinstance(x, list):
+                return [clean(v) for v in x]
+            return x
+        rows = [{k: clean(v) for k, v in r.items()} for r in rows]
         click.echo(json.dumps({"options": {"t_final": t_final, "dt": dt, "gravity": gravity,
                                            "disturbance": disturbance, "reference": reference,
                                            "cases": cases, "seed": seed},
-                               "rows": rows}, indent=2, default=float))
+                               "rows": rows, "notes": {"null": "never happened within "
+                                                       "t_final (e.g. never tracked)"}},
+                              indent=2, allow_nan=False))
         return
     title = "seed 002 scenario" if cases == 0 else f"seed 002 campaign, {cases} cases (mean/max)"
     t = Table(title=title)
