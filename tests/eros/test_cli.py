@@ -87,3 +87,9 @@ def test_report_no_sim_writes_every_format(tmp_path):
         assert f"[{c['id']}](#{c['id']})" in md
         assert c["verdict"] in ("proved", "proved-given", "checked", "unproven", "refuted")
     assert "Coverage of seed 002" in md
+
+
+def test_tune_infeasible_exit_3_writes_nothing(tmp_path):
+    out = tmp_path / "t.toml"
+    r = lgw("tune", "eros", "--ts", "0.5", "--u-max", "1", "--out", str(out))
+    assert r.returncode == 3 and "infeasible" in r.stderr and not out.exists()
