@@ -148,7 +148,8 @@ def bounded_gains_from_dict(d: dict[str, Any]) -> BoundedGains:
         if np.any(arr <= 0):
             raise ParameterError(f"bounded.{k}", d[k], "must be > 0")
         vals[k] = arr
-    rng = {"p2": (lambda x: x > 1, "must be > 1"), "e1": (lambda x: 0 < x < 1, "must lie in (0, 1)"),
+    rng = {"p2": (lambda x: x > 1, "must be > 1"),
+           "e1": (lambda x: 0 < x < 1, "must lie in (0, 1)"),
            "e2": (lambda x: x > 1, "must be > 1")}
     for k in EXP_KEYS:
         if k not in d:
@@ -162,9 +163,9 @@ def bounded_gains_from_dict(d: dict[str, Any]) -> BoundedGains:
 
 # Default gain set: chosen by ``lgw tune mars --law bounded --tf 60 --thrust-max 50000`` on the
 # default Table III + Table II envelope (rounded); see docs/tuning.md.
-DEFAULT_BOUNDED = {"c1": [4.0, 4.0, 3.6], "delta": [400.0, 400.0, 400.0],
-                   "c2": [1e-9, 1e-9, 1e-9], "k1": [2.0, 2.0, 2.0], "k2": [1e-4, 1e-4, 1e-4],
-                   "p2": 1.5, "e1": 0.5, "e2": 1.5}
+DEFAULT_BOUNDED = {"c1": [2.311, 2.217, 2.022], "delta": [112.6, 178.4, 101.9],
+                   "c2": [1e-9, 1e-9, 1e-9], "k1": [2.498, 2.798, 2.306],
+                   "k2": [1.607e-05, 1.557e-05, 2.727e-05], "p2": 1.5, "e1": 0.2, "e2": 1.5}
 
 
 def default_bounded() -> BoundedGains:
