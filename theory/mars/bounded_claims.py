@@ -126,7 +126,7 @@ def _quadrature_search(n: int = 40, seed: int = 0) -> Step:
         i = int(rng.integers(3))
         x1 = float(10 ** rng.uniform(-2, 0))
         x0 = float(10 ** rng.uniform(0, 3.5))
-        q, _ = quad(lambda x: 1.0 / float(B.psi_np(x, bg, i)), x1, x0, limit=200)
+        q, _ = quad(lambda x, i=i: 1.0 / float(B.psi_np(x, bg, i)), x1, x0, limit=200)
         m = float(B.slide_time(x0, x1, bg, i)) - q
         if m < worst:
             worst, pt = m, {"axis": i, "x0": x0, "x1": x1, "quad": q}
