@@ -80,13 +80,23 @@ def whole_box_note(env: Envelope, forced_fraction: float, thrust_max: float,
 @click.option("--fast", is_flag=True, help="smaller exponent grid and worst-case search")
 @click.option("--no-suggest", is_flag=True, help="do not search the nearest feasible tf")
 @click.option("--json", "as_json", is_flag=True, help="print the certificate as JSON")
+@click.option("--law", default="corrected", show_default=True,
+              help="corrected | bounded (issue 17: proven command bound, no keep-out)")
 @click.option("--out", type=click.Path(dir_okay=False, path_type=Path), required=True,
               help="gains TOML file to write (with a [certificate] table)")
 def command(tf: float, thrust_max: float, limit: str, envelope: str,
             a_max: float | None, neighborhood: float | None, theta1: float, theta2: float,
             bound: str, objective: str, keep_out: float, brake_fraction: float, seed: int,
-            fast: bool, no_suggest: bool, as_json: bool, out: Path) -> None:
+            fast: bool, no_suggest: bool, as_json: bool, law: str, out: Path) -> None:
     """Tune the corrected law's gains for a landing-time bound TF and a thrust limit."""
+    if law not in ("corrected", "bounded"):
+        raise ParameterError("--law", law, "must be one of corrected, bounded")
+    if law == "bounded":
+        if not out.parent.is_dir():
+            raise ParameterError("--out", str(out), "its directory does not exist")
+        from lgw.tuning.mars.design_bounded import run_cli
+        sys.exit(run_cli(tf, thrust_max, limit, envelope, seed, no_suggest, as_json, out,
+                         command="lgw tune mars " + " ".join(sys.argv[3:])))
     req = Request(tf=tf, thrust_max=thrust_max, limit=limit, bound=bound, objective=objective,
                   a_max=a_max, neighborhood=neighborhood, theta1=theta1, theta2=theta2)
     req.check()

@@ -29,12 +29,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.optimize import minimize
-
 from lgw.sim.mars.parameters import CD_LANDER, H_MARS, RHO0_MARS
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars import bounded as B
 from lgw.theory.mars.parameters import AREA, AXES, G_MARS, LAND_POS_TOL, LAND_VEL_TOL
+from scipy.optimize import minimize
 
 # Fixed design choices: e2 and p2 only matter far outside the envelope (fixed time from every
 # state); c2 small enough that its terms are negligible on the envelope (they are in the bounds).
@@ -162,7 +161,7 @@ class BoundedTuneResult:
 def tune_bounded(req: BoundedRequest, boxes, m_max: float, *,
                  progress: Callable[[str], None] | None = None,
                  simulate: Callable[[B.BoundedGains], dict[str, Any]] | None = None,
-                 e1_grid: tuple[float, ...] = (0.2, 0.3, 0.45, 0.6)) -> BoundedTuneResult:
+                 e1_grid: tuple[float, ...] = (0.1, 0.15, 0.2, 0.3)) -> BoundedTuneResult:
     """Design the bounded law for ``req`` over ``boxes`` (list of (lo(7), hi(7)))."""
     req.check()
     say = progress or (lambda msg: None)
@@ -213,8 +212,8 @@ def tune_bounded(req: BoundedRequest, boxes, m_max: float, *,
 
 
 def _round(x: float) -> float:
-    """Round to 4 significant digits *down* for gains where smaller is safer? No: the rounded
-    gains are re-certified by ``axis_certificate`` (the certificate is for what is written)."""
+    """4 significant digits; the rounded gains are re-certified by ``axis_certificate`` (the
+    certificate is for the gains written, not for the optimiser's)."""
     return float(f"{x:.4g}")
 
 
@@ -248,3 +247,131 @@ def packed_states(boxes, m_max: float, n_grid: int = 7, n_mc: int = 256,
     r0 = np.vstack([r0, x[:, :3]])
     v0 = np.vstack([v0, x[:, 3:6]])
     return r0, v0, np.full(len(r0), m_max)
+
+
+# --- simulation check and the CLI path (``lgw tune mars --law bounded``) --------------------
+
+def simulate_check(bg: B.BoundedGains, req: BoundedRequest, boxes, m_max: float, *,
+                   t_max: float, seed: int = 0, n_mc: int = 256) -> dict[str, Any]:
+    """Fly ``packed_states`` with the bounded law under the thrust limit (RK4, default dt):
+    latest landing, saturation, below-ground and non-finite counts, worst peak thrust."""
+    from dataclasses import replace as _replace
+
+    from lgw.sim.mars.batch import simulate_batch
+    from lgw.theory.mars.gains import default_gains
+    r0, v0, m0 = packed_states(boxes, m_max, n_mc=n_mc, seed=seed)
+    g = _replace(default_gains(), extra={"bounded": bg.to_dict()})
+    res = simulate_batch(r0, v0, m0, g, law=B.NAME, thrust_limit=req.thrust_max,
+                         limit=req.limit, t_max=t_max)
+    k = int(np.nanargmax(np.where(res.landed, res.landing_time, np.inf)))
+    return {"states": int(len(r0)), "all_landed": bool(res.landed.all()),
+            "max_landing_time": float(np.max(np.where(res.landed, res.landing_time, np.inf))),
+            "latest_state": np.r_[r0[k], v0[k], m0[k]].tolist(),
+            "saturated": int(np.sum(res.time_saturated > 0)),
+            "nonfinite": int(np.sum(res.nonfinite)),
+            "below_ground": int(np.sum(res.min_altitude < -GROUND_SLACK)),
+            "min_altitude": float(np.min(res.min_altitude)),
+            "peak_thrust": float(np.max(res.peak_thrust))}
+
+
+def certificate_bounded(res: BoundedTuneResult, req: BoundedRequest, env_name: str,
+                        command: str = "") -> dict[str, Any]:
+    from lgw.tuning.mars.gains_file import versions
+    return {"law": B.NAME, "feasible": res.feasible, "time_proven": res.time_proven,
+            "reason": res.reason, "command": command,
+            "request": {"tf": req.tf, "thrust_max": req.thrust_max, "limit": req.limit,
+                        "margin": req.margin},
+            "envelope": env_name, "keep_out": "none: the whole envelope is covered",
+            "thrust_bound_proven": res.F_proven, "landing_time_bound_proven": res.T_proven,
+            "bounds": res.axes, "simulation": res.sim,
+            "timings": res.timings, "versions": versions()}
+
+
+def write_bounded_gains(path, bg: B.BoundedGains, cert: dict[str, Any], header: str) -> None:
+    """[gains] (seed 000's table, required by the loader, unused by the bounded law), [bounded]
+    and [certificate], atomically."""
+    from pathlib import Path
+
+    from lgw.theory.mars.gains import default_gains, gains_to_toml
+    from lgw.tuning.mars.gains_file import toml_tables
+    text = gains_to_toml(default_gains(), header=header).rstrip("\n") + "\n\n"
+    text += "\n".join(toml_tables("bounded", bg.to_dict())).rstrip("\n") + "\n\n"
+    text += "\n".join(toml_tables("certificate", _plain(cert))).rstrip("\n") + "\n"
+    p = Path(path)
+    tmp = p.with_name(p.name + ".tmp")
+    tmp.write_text(text)
+    tmp.replace(p)
+
+
+def _plain(x: Any) -> Any:
+    if isinstance(x, dict):
+        return {k: _plain(v) for k, v in x.items() if v is not None}
+    if isinstance(x, list | tuple):
+        return [_plain(v) for v in x]
+    if isinstance(x, np.generic):
+        return x.item()
+    if isinstance(x, float) and not math.isfinite(x):
+        return str(x)
+    return x
+
+
+def run_cli(tf: float, thrust_max: float, limit: str, envelope: str, seed: int,
+            no_suggest: bool, as_json: bool, out, command: str = "") -> int:
+    """``lgw tune mars --law bounded``: returns the exit code (0 feasible, 3 infeasible)."""
+    import json
+
+    import click
+    from lgw.tuning.mars.design import envelope_from_name
+    t0 = time.perf_counter()
+    req = BoundedRequest(tf=tf, thrust_max=thrust_max, limit=limit)
+    req.check()
+    env = envelope_from_name(envelope)
+    if env.states is not None:
+        raise ParameterError("--envelope", envelope, "must be table3, table2 or table3+table2 "
+                             "with --law bounded (the bounds are over boxes)")
+
+    def say(msg: str) -> None:
+        click.echo(f"[{time.perf_counter() - t0:5.1f} s] {msg}", err=True)
+
+    def sim(bg: B.BoundedGains) -> dict[str, Any]:
+        return simulate_check(bg, req, env.boxes, env.m_max, t_max=max(1.5 * tf, tf + 20),
+                              seed=seed)
+    say(f"designing the bounded law for {env.name} ({len(env.boxes)} boxes, m_max "
+        f"{env.m_max:.0f} kg): proven thrust bound <= {req.margin:g} x {thrust_max:g} N")
+    res = tune_bounded(req, env.boxes, env.m_max, progress=say, simulate=sim)
+    res.timings["total"] = time.perf_counter() - t0
+    if res.sim:
+        s = res.sim
+        say(f"simulated {s['states']} states: latest landing {s['max_landing_time']:.1f} s, "
+            f"{s['saturated']} saturated, {s['below_ground']} below ground, peak "
+            f"{s['peak_thrust']:.0f} N")
+    if not res.feasible:
+        click.echo(f"infeasible: {res.reason}", err=True)
+        if res.gains is not None and np.isfinite(res.T_proven) and not no_suggest:
+            tf_ok = math.ceil(res.T_proven * 10) / 10
+            click.echo(f"nearest feasible tf: {tf_ok:g} s (proven: the landing-time bound of "
+                       f"the best gains found, with the thrust bound {res.F_proven:.0f} N); "
+                       f"rerun with --tf {tf_ok:g}", err=True)
+            click.echo("why: the command at t = 0 at an overshooting state (r_i, v_i) with "
+                       "psi(r_i) < |v_i| is psi'(r_i)|v_i| + k(|s|) (both terms push the same "
+                       "way), so psi' <= u_max/|v_i| near the target, and the sliding phase "
+                       "converges no faster than exp(-psi'(0) t) there", err=True)
+        click.echo("nothing written", err=True)
+        return 3
+    cert = certificate_bounded(res, req, env.name, command)
+    header = (f"lgw tune mars --law bounded: tf = {tf:g} s, thrust_max = {thrust_max:g} N "
+              f"({limit}), envelope = {env.name}")
+    write_bounded_gains(out, res.gains, cert, header)
+    if as_json:
+        click.echo(json.dumps(_plain(cert), default=float, indent=1))
+        return 0
+    click.echo(f"wrote {out}")
+    click.echo(f"e1 = {res.gains.e1:g}, e2 = {res.gains.e2:g}, p2 = {res.gains.p2:g}; "
+               f"time {'proven' if res.time_proven else 'checked by simulation'}")
+    for i, ax in enumerate(AXES):
+        a = res.axes[ax]
+        click.echo(f"  {ax}: c1 {res.gains.c1[i]:.4g} delta {res.gains.delta[i]:.4g} "
+                   f"k1 {res.gains.k1[i]:.4g} k2 {res.gains.k2[i]:.4g}  proven T_land "
+                   f"{a['T_land']:.1f} s, proven |F| <= {a['F_b']:.0f} N")
+    click.echo(f"tuned in {res.timings['total']:.1f} s")
+    return 0
