@@ -161,7 +161,7 @@ class BoundedTuneResult:
 def tune_bounded(req: BoundedRequest, boxes, m_max: float, *,
                  progress: Callable[[str], None] | None = None,
                  simulate: Callable[[B.BoundedGains], dict[str, Any]] | None = None,
-                 e1_grid: tuple[float, ...] = (0.1, 0.15, 0.2, 0.3)) -> BoundedTuneResult:
+                 e1_grid: tuple[float, ...] = (0.1, 0.2)) -> BoundedTuneResult:
     """Design the bounded law for ``req`` over ``boxes`` (list of (lo(7), hi(7)))."""
     req.check()
     say = progress or (lambda msg: None)
