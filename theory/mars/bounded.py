@@ -278,7 +278,7 @@ class AxisBox:
 
 
 def _cells_sup(bg: BoundedGains, i: int, R: float, s_b: float, v_b: float,
-               n: int = 4000) -> float:
+               n: int = 600) -> float:
     """A rigorous upper bound of sup_{0<=x<=R} psi'(x) min(v_b, s_b + psi(x)) (1/s * m/s).
 
     On each cell [x_j, x_j+1] of a grid (0 and a log grid up to R): c1 phi' decreases,

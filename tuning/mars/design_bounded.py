@@ -76,7 +76,8 @@ def axis_boxes(boxes, i: int) -> list[B.AxisBox]:
             for lo, hi in boxes]
 
 
-def axis_certificate(bg: B.BoundedGains, i: int, boxes, m_max: float) -> dict[str, float]:
+def axis_certificate(bg: B.BoundedGains, i: int, boxes, m_max: float,
+                     with_global: bool = True) -> dict[str, float]:
     """The proven per-axis numbers over all boxes: thrust bound (N), T_land (s) and the parts."""
     worst: dict[str, float] = {}
     for b in axis_boxes(boxes, i):
@@ -84,7 +85,8 @@ def axis_certificate(bg: B.BoundedGains, i: int, boxes, m_max: float) -> dict[st
         d["F_b"] = float(m_max * (abs(G_MARS[i]) + d["u_b"]) + drag_force_coef()[i] * d["V_b"]**2)
         for k, x in d.items():
             worst[k] = max(worst.get(k, -np.inf), x)
-    worst["T_global"] = B.global_time_bound(bg, i, LAND_POS_TOL, LAND_VEL_TOL)
+    if with_global:  # the fixed-time bound from every state (not needed by the optimiser)
+        worst["T_global"] = B.global_time_bound(bg, i, LAND_POS_TOL, LAND_VEL_TOL)
     return worst
 
 
@@ -103,12 +105,11 @@ def _gains_axis(p: dict[str, float], i: int, base: dict[str, Any]) -> B.BoundedG
     return B.bounded_gains_from_dict(d)
 
 
-STARTS = ((3.0, 300.0, 1.0, 1e-4, 0.0), (5.0, 1000.0, 2.0, 1e-3, -1.0),
-          (2.0, 100.0, 2.0, 1e-5, -1.5))
+STARTS = ((3.0, 300.0, 1.0, 1e-4, 0.0), (2.0, 100.0, 2.0, 1e-5, -1.5))
 
 
 def design_axis(i: int, boxes, m_max: float, budget: float, e1: float | None = None,
-                maxiter: int = 400) -> tuple[dict[str, float], dict[str, float]]:
+                maxiter: int = 250) -> tuple[dict[str, float], dict[str, float]]:
     """Minimise the proven T_land of axis i subject to the proven thrust bound <= budget.
 
     The exponent e1 is shared by the axes (a scalar of the [bounded] table): with ``e1`` given
@@ -120,7 +121,7 @@ def design_axis(i: int, boxes, m_max: float, budget: float, e1: float | None = N
         if e1 is not None:
             p["e1"] = e1
         try:
-            return axis_certificate(_gains_axis(p, i, base), i, boxes, m_max)
+            return axis_certificate(_gains_axis(p, i, base), i, boxes, m_max, False)
         except (ParameterError, FloatingPointError, ValueError):
             return None
 
@@ -177,7 +178,9 @@ def tune_bounded(req: BoundedRequest, boxes, m_max: float, *,
         T = max(c["T_land"] if c else np.inf for c in certs)
         F = max(c["F_b"] if c else np.inf for c in certs)
         say(f"e1 = {e1:g}: proven landing-time bound {T:.1f} s, thrust bound {F:.0f} N")
-        if F <= budget * (1 + 1e-9) and (best is None or T < best[0]):
+        # the optimiser's penalty lets F exceed the budget by a hair; the limit is re-checked
+        # on the rounded gains below
+        if F <= budget * 1.001 and (best is None or T < best[0]):
             best = (T, F, parts, certs)
     t_design = time.perf_counter() - t0
     if best is None:
@@ -241,9 +244,9 @@ def packed_states(boxes, m_max: float, n_grid: int = 7, n_mc: int = 256,
     v0 = np.column_stack([np.resize(per[i][:, 1], n) for i in range(3)])
     rng = np.random.default_rng(seed)
     k = rng.integers(len(boxes), size=n_mc)
-    lo = np.array([boxes[j][0] for j in k])
-    hi = np.array([boxes[j][1] for j in k])
-    x = rng.uniform(lo, hi)
+    lo = np.array([boxes[j][0] for j in k]).reshape(-1, 7)
+    hi = np.array([boxes[j][1] for j in k]).reshape(-1, 7)
+    x = rng.uniform(lo, hi).reshape(-1, 7)
     r0 = np.vstack([r0, x[:, :3]])
     v0 = np.vstack([v0, x[:, 3:6]])
     return r0, v0, np.full(len(r0), m_max)
