@@ -233,6 +233,9 @@ def bench_bounded(tf: float = 60.0, thrust: float = 50_000.0, envelope: str = "t
         print(json.dumps({k: out[k] for k in ("nearest_tf", "bounded_e2e_nearest_s")},
                          default=float), flush=True)
     out["gains"] = gains.to_dict()
+    for name, n in (("table3", n3), ("table2", n2)):
+        out[name] = bounded_campaign(gains, tf_c, thrust, name, n, BOUNDED_SEEDS[name])
+        print(json.dumps(out[name], indent=1, default=float), flush=True)
     if baseline:
         _warm()
         t = time.perf_counter()
@@ -247,9 +250,6 @@ def bench_bounded(tf: float = 60.0, thrust: float = 50_000.0, envelope: str = "t
                     "ratio_corrected_over_bounded": t_old / t_new})
         print(json.dumps({k: out[k] for k in ("corrected_e2e_s", "ratio_corrected_over_bounded")},
                          default=float), flush=True)
-    for name, n in (("table3", n3), ("table2", n2)):
-        out[name] = bounded_campaign(gains, tf_c, thrust, name, n, BOUNDED_SEEDS[name])
-        print(json.dumps(out[name], indent=1, default=float), flush=True)
     return out
 
 
