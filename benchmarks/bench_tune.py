@@ -6,6 +6,10 @@
   python benchmarks/bench_tune.py check       tune a few targets (or the nearest feasible tf)
                                                and fly FRESH Table III (50) and Table II (300)
                                                campaigns with another seed than the tuner's
+  python benchmarks/bench_tune.py bounded     issue 17: end-to-end time of ``lgw tune mars --law
+                                               bounded`` against today's corrected-law tuner, same
+                                               run (ratio); then fresh Table III (500) and Table
+                                               II (1000) campaigns with the tuned bounded gains
   python benchmarks/bench_tune.py all
 
 Every number printed comes from ``lgw.tuning.mars.design`` and
@@ -135,9 +139,124 @@ def bench_check(targets=TARGETS, n3: int = 50, n2: int = 300) -> list[dict]:
     return rows
 
 
+BOUNDED_SEEDS = {"table3": 17_003, "table2": 17_002}  # campaign seeds (tuner: seed 0)
+
+
+def _tune_bounded_e2e(tf: float, thrust: float, envelope: str) -> tuple[float, object]:
+    """What ``lgw tune mars --law bounded`` does, timed: design, then (only if the proven bound
+    exceeds tf) the simulation check."""
+    from lgw.tuning.mars.design_bounded import BoundedRequest, simulate_check, tune_bounded
+    env = envelope_from_name(envelope)
+    req = BoundedRequest(tf=tf, thrust_max=thrust)
+    t = time.perf_counter()
+    res = tune_bounded(req, env.boxes, env.m_max, simulate=lambda bg: simulate_check(
+        bg, req, env.boxes, env.m_max, t_max=max(1.5 * tf, tf + 20)))
+    return time.perf_counter() - t, res
+
+
+def after_arrival_peaks(r, v, F, tol=(0.1, 0.1)) -> tuple[np.ndarray, np.ndarray]:
+    """Per case and axis: the time index at which the axis first enters its landing band
+    (|r_i| <= tol[0], |v_i| <= tol[1]; -1 if never) and the peak |F_i| from then on (NaN after a
+    case stopped is ignored)."""
+    band = (np.abs(r) <= tol[0]) & (np.abs(v) <= tol[1])  # (N, S, 3)
+    first = np.where(band.any(axis=1), np.argmax(band, axis=1), -1)
+    S = r.shape[1]
+    after = np.arange(S)[None, :, None] >= np.where(first < 0, S, first)[:, None, :]
+    peak = np.nanmax(np.where(after, np.abs(F), -np.inf), axis=1)
+    return first, np.where(first < 0, np.nan, peak)
+
+
+def bounded_campaign(gains, tf: float, thrust: float, name: str, n: int, seed: int,
+                     dt: float = 0.02, chunk: int = 250) -> dict:
+    """A fresh campaign with the bounded law, simulated apart from the tuner (other states and
+    seed, RK4 at dt = 0.02 s instead of the tuner's 0.05 s, trajectories recorded)."""
+    from dataclasses import replace as _replace
+
+    from lgw.sim.mars.batch import simulate_batch
+    from lgw.theory.mars.gains import default_gains
+    g = _replace(default_gains(), extra={"bounded": gains.to_dict()})
+    fn = table3_states if name == "table3" else table2_states
+    r0, v0, m0 = fn(n, seed=seed)
+    acc: dict[str, list] = {k: [] for k in ("lt", "landed", "peak", "sat", "alt", "after")}
+    for a in range(0, n, chunk):
+        sl = slice(a, min(a + chunk, n))
+        res = simulate_batch(r0[sl], v0[sl], m0[sl], g, law="bounded", thrust_limit=thrust,
+                             t_max=tf + 5.0, dt=dt, record=True, stop="t_max")
+        tr = res.trajectory
+        _, after = after_arrival_peaks(tr["r"], tr["v"], tr["F"])
+        acc["lt"].append(res.landing_time)
+        acc["landed"].append(res.landed & (res.landing_time <= tf))
+        acc["peak"].append(res.peak_thrust)
+        acc["sat"].append(res.time_saturated)
+        acc["alt"].append(res.min_altitude)
+        acc["after"].append(after)
+    lt, landed = np.concatenate(acc["lt"]), np.concatenate(acc["landed"])
+    peak, sat = np.concatenate(acc["peak"]), np.concatenate(acc["sat"])
+    alt, after = np.concatenate(acc["alt"]), np.concatenate(acc["after"])
+    return {"campaign": name, "cases": n, "seed": seed, "dt": dt, "tf": tf,
+            "landed_within_tf": int(landed.sum()), "max_landing_time_s": float(np.nanmax(lt)),
+            "mean_landing_time_s": float(np.nanmean(lt)),
+            "peak_thrust_axis_N": np.max(peak, axis=0).round(0).tolist(),
+            "under_limit": bool(np.all(peak <= thrust)), "saturated_cases": int((sat > 0).sum()),
+            "min_altitude_m": float(np.min(alt)),
+            "below_ground_cases_0.1m": int((alt < -0.1).sum()),
+            "below_ground_cases_strict": int((alt < 0).sum()),
+            "peak_after_arrival_axis_N": np.nanmax(after, axis=0).round(1).tolist(),
+            "passed": bool(landed.all() and np.all(peak <= thrust) and (sat == 0).all()
+                           and (alt >= -0.1).all())}
+
+
+def bench_bounded(tf: float = 60.0, thrust: float = 50_000.0, envelope: str = "table3+table2",
+                  baseline: bool = True, n3: int = 500, n2: int = 1000) -> dict:
+    from lgw.theory.mars import bounded as B
+    from lgw.tuning.mars.design_bounded import simulate_check
+    warm = time.perf_counter()
+    env = envelope_from_name(envelope)
+    from lgw.tuning.mars.design_bounded import BoundedRequest
+    simulate_check(B.default_bounded(), BoundedRequest(tf, thrust), env.boxes, env.m_max,
+                   t_max=5.0, n_mc=1)  # compile the bounded kernel outside the timing
+    warm = time.perf_counter() - warm
+    t_new, res = _tune_bounded_e2e(tf, thrust, envelope)
+    out: dict = {"problem": f"tf={tf:g} s, {thrust:g} N/axis, envelope {envelope}",
+                 "bounded_compile_s": warm, "bounded_e2e_s": t_new,
+                 "bounded_feasible": res.feasible, "bounded_reason": res.reason,
+                 "bounded_T_proven": res.T_proven, "bounded_F_proven": res.F_proven,
+                 "bounded_timings": res.timings}
+    print(json.dumps(out, indent=1, default=float), flush=True)
+    gains, tf_c = res.gains, tf
+    if not res.feasible:
+        tf_c = float(np.ceil(res.T_proven * 10) / 10)
+        t2, res2 = _tune_bounded_e2e(tf_c, thrust, envelope)
+        out.update({"nearest_tf": tf_c, "bounded_e2e_nearest_s": t2,
+                    "nearest_feasible": res2.feasible, "nearest_time_proven": res2.time_proven})
+        gains = res2.gains
+        print(json.dumps({k: out[k] for k in ("nearest_tf", "bounded_e2e_nearest_s")},
+                         default=float), flush=True)
+    out["gains"] = gains.to_dict()
+    for name, n in (("table3", n3), ("table2", n2)):
+        out[name] = bounded_campaign(gains, tf_c, thrust, name, n, BOUNDED_SEEDS[name])
+        print(json.dumps(out[name], indent=1, default=float), flush=True)
+    if baseline:
+        _warm()
+        t = time.perf_counter()
+        base = tune(Request(tf=tf, thrust_max=thrust), env)
+        t_old = time.perf_counter() - t
+        if not base.feasible:
+            t = time.perf_counter()
+            nearest_feasible_tf(replace(Request(tf=tf, thrust_max=thrust),
+                                        tf=max(tf, base.tf_min_envelope)), env)
+            t_old += time.perf_counter() - t
+        out.update({"corrected_e2e_s": t_old, "corrected_feasible": base.feasible,
+                    "ratio_corrected_over_bounded": t_old / t_new})
+        print(json.dumps({k: out[k] for k in ("corrected_e2e_s", "ratio_corrected_over_bounded")},
+                         default=float), flush=True)
+    return out
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("time", "compare", "check", "all"))
+    ap.add_argument("what", choices=("time", "compare", "check", "bounded", "all"))
+    ap.add_argument("--no-baseline", action="store_true", help="bounded: skip the corrected tuner")
     ap.add_argument("--envelope", default=None)
     ap.add_argument("--tf", type=float, nargs="*", default=None)
     args = ap.parse_args()
@@ -149,6 +268,8 @@ def main() -> None:
                       envelope=args.envelope or "table3")
     if args.what in ("check", "all"):
         bench_check()
+    if args.what in ("bounded", "all"):
+        bench_bounded(baseline=not args.no_baseline)
 
 
 if __name__ == "__main__":

@@ -377,3 +377,13 @@ def numba_s2() -> Callable[..., float]:
 def surface_params(g: Gains) -> np.ndarray:
     """(3, 4) array [beta1, beta2, q1, q2] per axis for s2 (21)."""
     return np.column_stack([g.beta1, g.beta2, np.full(3, g.q1), np.full(3, g.q2)]).astype(float)
+
+
+
+# --- issue 17: the bounded cascade law (lgw.theory.mars.bounded), gains from [bounded] --------
+from lgw.theory.mars import bounded as _bounded  # noqa: E402  (kept with its one registration)
+
+register_law(LawSpec(_bounded.NAME, _bounded.law_bounded, _bounded.PARAMS,
+                     lambda g: _bounded.bounded_from_extra(g.extra).params(),
+                     "bounded cascade (issue 17): s = v + psi(r), finite continuous command, "
+                     "proven time and command bounds; gains from the [bounded] table"))

@@ -1,0 +1,273 @@
+"""Claims of the bounded cascade law (issue 17, ``lgw.theory.mars.bounded``), with verdicts.
+
+Every step is computed from the SymPy expressions of ``bounded`` (the law the simulator runs)
+or, for the numeric bounds, checked against an independent route: the per-axis closed loop
+integrated by ``scipy.integrate.solve_ivp`` (rtol 1e-9) from the law's own lambdified
+expression, not the simulator's compiled code.  ``all_claims()`` lists them in report order.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import sympy as sp
+import z3
+from lgw.theory.evidence import Cited, Claim, Inequality, Search, Step
+from lgw.theory.mars import bounded as B
+from lgw.theory.mars.mss import am, ap, grav, r, v
+from lgw.theory.provers import prove_identity, prove_nonneg
+from lgw.theory.symbolic import LAMBDIFY_MODULES, on_branch, sig
+
+X = sp.Symbol("x", positive=True)  # |r| on a branch
+LAW = B.NAME
+FIXED_TIME_REF = ("Aldana-Lopez, Gomez-Gutierrez et al., IJRNC 29 (2019), exact settling time "
+                  "of s' = -k1 sig(s,e1) - k2 sig(s,e2); seed 000 Lemma 2")
+COMPARISON_REF = "Khalil, Nonlinear Systems, 3rd ed., Lemma 3.4 (comparison lemma)"
+
+
+def _branches(expr: sp.Expr, sym: sp.Symbol, statement: str) -> list[Step]:
+    """expr == 0 on sym > 0 and on sym < 0 (sig and Abs become powers)."""
+    return [prove_identity(sp.powsimp(on_branch(expr, {sym: sg})[0], force=True),
+                           f"{statement} ({sym} {'>' if sg > 0 else '<'} 0)")
+            for sg in (1, -1)]
+
+
+def claim_derivative() -> Claim:
+    """s' = -k1 sig(s,e1) - k2 sig(s,e2) + a_p identically; V = s^2/2 gives the fixed-time
+    inequality of seed 000 Lemma 2 on s."""
+    steps = _branches(sp.diff(B.psi(), r) - B.dpsi(), r, "d psi/dr equals the law's psi'(r)")
+    sdot = sp.diff(B.surface(), r) * v + sp.diff(B.surface(), v) * (B.law_bounded() + grav + am
+                                                                     + ap)
+    target = B.reaching(B.surface()) + ap
+    steps += _branches(sdot - target, r, "s' along r' = v, v' = a + g + a_m + a_p is "
+                       "-k1 sig(s,e1) - k2 sig(s,e2) + a_p")
+    s = B.S
+    vdot = s * (B.reaching(s) + ap)
+    want = -B.k1 * sp.Abs(s) ** (B.e1 + 1) - B.k2 * sp.Abs(s) ** (B.e2 + 1) + s * ap
+    steps += _branches(vdot - want, s, "V = s^2/2: V' = -k1|s|^(e1+1) - k2|s|^(e2+1) + s a_p")
+    return Claim("bounded-derivative", "issue 17", "Lyapunov derivative of the bounded law",
+                 "(not in seed 000)", "V' = -k1|s|^(e1+1) - k2|s|^(e2+1) + s a_p for V = s^2/2, "
+                 "s = v + psi(r)", steps, law=LAW,
+                 derived_expr=sp.Eq(sp.Symbol("Vdot"), want))
+
+
+def claim_finite() -> Claim:
+    """The command is finite and continuous on R^2: every power in it has a nonnegative
+    exponent or a base bounded away from 0, and sig(s, e) is continuous for e > 0."""
+    steps = []
+    law = B.law_bounded()
+    for p in sorted(law.atoms(sp.Pow), key=sp.default_sort_key):
+        base, ex = p.as_base_exp()
+        if ex.is_Integer and ex > 0:
+            continue
+        if base.free_symbols & {r, v}:
+            # the base is delta + |r| (> 0) or |r| with exponent p2 - 1 > 0 under p2 > 1
+            if base.has(B.delta):
+                steps.append(prove_nonneg(base - B.delta, f"base {sp.sstr(base)} >= delta > 0"))
+            else:
+                steps.append(prove_nonneg((ex).subs(B.p2, 1 + sp.Symbol("eps", positive=True)),
+                                          f"exponent {sp.sstr(ex)} >= 0 on {sp.sstr(base)} "
+                                          "(p2 > 1)"))
+    for f in law.atoms(sig):
+        steps.append(prove_nonneg(f.args[1], f"sig(., {sp.sstr(f.args[1])}) has a positive "
+                                  "exponent: continuous, 0 at 0", strict=True))
+    return Claim("bounded-command-finite", "issue 17", "The bounded law's command is finite and "
+                 "continuous everywhere", "(not in seed 000)",
+                 "no negative power of |r| or |s| occurs; psi'(r) <= c1/sqrt(delta) + "
+                 "c2 p2 |r|^(p2-1) is finite at r = 0", steps, law=LAW)
+
+
+def claim_psi_monotone() -> Claim:
+    """psi' > 0; c1 phi' decreases in |r|; psi >= c1 |r|/sqrt(delta + |r|) (used by the cell
+    bound of the command and by the inverse bound of ``psi_inv_upper``)."""
+    on_pos = {r: X}
+    dpsi_pos = B.dpsi().subs(on_pos)
+    dphi = B.c1 * (B.delta + X / 2) * (B.delta + X) ** sp.Rational(-3, 2)
+    ddphi = sp.diff(dphi, X)
+    want = -B.c1 * (B.delta + X / 4) * (B.delta + X) ** sp.Rational(-5, 2)
+    steps = [prove_nonneg(dpsi_pos, "psi'(x) > 0 for x = |r| > 0", strict=True),
+             prove_identity(ddphi - want, "d/dx [c1 phi'(x)] = -c1 (delta + x/4)(delta+x)^(-5/2)"),
+             prove_nonneg(-want, "so c1 phi' is nonincreasing in x"),
+             prove_nonneg(B.psi().subs(on_pos) - B.c1 * X / sp.sqrt(B.delta + X),
+                          "psi(x) - c1 x/sqrt(delta + x) = c2 x^p2 >= 0"),
+             prove_nonneg(sp.diff(B.c2 * X ** B.p2, X), "c2 x^p2 is nondecreasing")]
+    return Claim("bounded-psi-monotone", "issue 17", "Shape of the velocity reference psi",
+                 "(not in seed 000)", "psi increasing, c1 phi' nonincreasing, psi >= c1 phi",
+                 steps, law=LAW)
+
+
+def claim_slide_time() -> Claim:
+    """On s = 0 (r' = -psi(r)) the time from |r| = x0 to x1 is at most (F(x0) - F(x1))/c1."""
+    d = B.delta
+    F = 2 * sp.sqrt(d + X) + sp.sqrt(d) * (sp.log(X) - 2 * sp.log(sp.sqrt(d + X) + sp.sqrt(d)))
+    steps = [prove_identity(sp.diff(F, X) - sp.sqrt(d + X) / X,
+                            "dF/dx = sqrt(delta + x)/x = 1/(c1 phi(x)) * c1"),
+             prove_nonneg(B.psi().subs(r, X) - B.c1 * X / sp.sqrt(d + X),
+                          "psi >= c1 phi, so 1/psi <= 1/(c1 phi)")]
+    Xb = sp.Symbol("X", positive=True)
+    tail = Xb ** (1 - B.p2) / (B.c2 * (B.p2 - 1))
+    steps.append(prove_identity(sp.diff(tail, Xb) + 1 / (B.c2 * Xb ** B.p2),
+                                "d/dX X^(1-p2)/(c2 (p2-1)) = -1/(c2 X^p2): the tail beyond X "
+                                "is finite (fixed time from any r)"))
+    return Claim("bounded-slide-time", "issue 17", "Sliding-phase time bound (closed form)",
+                 "(not in seed 000)", "T_r <= (F(x0) - F(x1))/c1, F(x) = 2 sqrt(delta+x) + "
+                 "sqrt(delta) ln(x/(sqrt(delta+x)+sqrt(delta))^2); from any r: "
+                 "<= (F(X)-F(x1))/c1 + X^(1-p2)/(c2(p2-1))", steps, law=LAW,
+                 derived_expr=sp.Eq(sp.Symbol("F"), F))
+
+
+def _quadrature_search(n: int = 40, seed: int = 0) -> Step:
+    from scipy.integrate import quad
+    bg = B.default_bounded()
+    rng = np.random.default_rng(seed)
+    worst, pt = np.inf, {}
+    for _ in range(n):
+        i = int(rng.integers(3))
+        x1 = float(10 ** rng.uniform(-2, 0))
+        x0 = float(10 ** rng.uniform(0, 3.5))
+        q, _ = quad(lambda x, i=i: 1.0 / float(B.psi_np(x, bg, i)), x1, x0, limit=200)
+        m = float(B.slide_time(x0, x1, bg, i)) - q
+        if m < worst:
+            worst, pt = m, {"axis": i, "x0": x0, "x1": x1, "quad": q}
+    return Step("slide_time >= int dx/psi(x) by adaptive quadrature (default gains)",
+                Search({"x0": (1, 10**3.5), "x1": (0.01, 1), "axis": (0, 2)},
+                       "scipy.integrate.quad vs closed form", n, worst, pt, seed))
+
+
+def claim_invariants() -> Claim:
+    """State bounds for all t >= 0: |s| <= S_b, |r| <= R_b, |v| <= V_b (``axis_box_bounds``)."""
+    s = B.S
+    steps = [prove_nonneg(B.k1 * sp.Abs(s) ** (B.e1 + 1) + B.k2 * sp.Abs(s) ** (B.e2 + 1),
+                          "V' = -(k1|s|^(e1+1) + k2|s|^(e2+1)) <= 0 without disturbance: |s| "
+                          "is nonincreasing")]
+    # sign lemma: |v| > P >= |psi(r)| implies s v > 0 (s = v + psi), by z3 on reals
+    vv, pp, PP = z3.Reals("v psi P")
+    sol = z3.Solver()
+    sol.add(z3.Abs(pp) <= PP, z3.Abs(vv) > PP, (vv + pp) * vv <= 0)
+    ans = str(sol.check())
+    steps.append(Step("|v| > P >= |psi(r)| implies s v > 0, so d|v|/dt = -psi'|v| - k(|s|) "
+                      "(+ a_p sgn v) < 0 there: |v| <= max(|v0|, psi(R_b) + s_nb)",
+                      Inequality(sp.Symbol("s") * v, "z3", answer=ans, strict=True)))
+    steps += _branches(sp.sign(r) * (B.surface() - B.psi()) - sp.sign(r) * v, r,
+                       "d|r|/dt = sgn(r) v = sgn(r) s - psi(|r|) (psi odd)")
+    steps.append(Step("so |r| <= max(|r0|, psi^(-1)(S_b)) and the time bounds follow",
+                      Cited(COMPARISON_REF, "comparison lemma for d|r|/dt <= S_b - psi(|r|)",
+                            tuple(steps[-2:]))))
+    steps.append(_ivp_search())
+    steps.append(_quadrature_search())
+    return Claim("bounded-invariants", "issue 17", "State, command and time bounds over a box",
+                 "(not in seed 000)", "|r| <= R_b, |v| <= V_b, |a+g+a_m| <= u_b, landing by "
+                 "T_s + T_r (lgw.theory.mars.bounded.axis_box_bounds)", steps, law=LAW,
+                 scope="gain-set")
+
+
+@cache
+def _u_numeric():
+    u = B.law_bounded() + grav + am  # the commanded v' without disturbance
+    return sp.lambdify((r, v, *B.PARAMS), u, modules=LAMBDIFY_MODULES)
+
+
+# The Table III box per axis (seed 000 Table III; the tuner's envelope adds Table II).
+TABLE3_AXES = (B.AxisBox(-1000.0, 200.0, -15.0, 45.0), B.AxisBox(0.0, 2000.0, -100.0, 0.0),
+               B.AxisBox(1000.0, 1500.0, -75.0, 0.0))
+
+
+S_EPS = 1e-7  # m/s
+
+
+def fly_axis(bg: B.BoundedGains, i: int, r0: float, v0: float, t_max: float = 300.0,
+             tol: tuple[float, float] = (0.1, 0.1)) -> dict[str, float]:
+    """One axis of the closed loop by solve_ivp (RK45, rtol = atol = 1e-10) from the SymPy law:
+    max |r|, |v|, |u| along the way and the first time |r| <= tol[0] and |v| <= tol[1].
+
+    Two phases: the full loop until |s| = S_EPS (a terminal event; the reaching law is not
+    Lipschitz at s = 0 and the step size would shrink without end), then the sliding phase
+    r' = -psi(r), v = -psi(r) (|s| is nonincreasing and stays 0 once it is 0; starting it at
+    |s| = S_EPS errs by at most S_EPS in v and 2 sqrt(S_EPS)/k1 in time, both far below the
+    margins compared)."""
+    from scipy.integrate import solve_ivp
+    f = _u_numeric()
+    P = bg.params()[i]
+
+    def rhs(t, y):
+        return [y[1], float(f(y[0], y[1], *P))]
+
+    def s_zero(t, y):  # |s| = S_EPS: the rest of the reaching phase lasts < 2 sqrt(S_EPS)/k1
+        return abs(y[1] + float(B.psi_np(y[0], bg, i))) - S_EPS
+    s_zero.terminal = True
+    kw = {"rtol": 1e-10, "atol": 1e-10, "dense_output": True}
+    one = solve_ivp(rhs, (0.0, t_max), [r0, v0], events=s_zero, **kw)
+    t1 = float(one.t[-1])
+    ts = np.linspace(0.0, t1, max(int(t1 * 50), 2))
+    rr, vv = one.sol(ts)
+    if t1 < t_max:
+        two = solve_ivp(lambda t, y: [-float(B.psi_np(y[0], bg, i))], (t1, t_max),
+                        [float(one.y[0, -1])], **kw)
+        ts2 = np.linspace(t1, t_max, max(int((t_max - t1) * 50), 2))
+        r2 = two.sol(ts2)[0]
+        ts, rr, vv = np.r_[ts, ts2], np.r_[rr, r2], np.r_[vv, -B.psi_np(r2, bg, i)]
+    u = np.asarray(f(rr, vv, *P), float)
+    inside = (np.abs(rr) <= tol[0]) & (np.abs(vv) <= tol[1])
+    t_land = float(ts[np.argmax(inside)]) if inside.any() else np.inf
+    return {"r": float(np.max(np.abs(rr))), "v": float(np.max(np.abs(vv))),
+            "u": float(np.max(np.abs(u))), "t_land": t_land}
+
+
+def _ivp_search(n: int = 12, seed: int = 1) -> Step:
+    bg = B.default_bounded()
+    rng = np.random.default_rng(seed)
+    worst, pt, evals = np.inf, {}, 0
+    for i, box in enumerate(TABLE3_AXES):
+        d = B.axis_box_bounds(bg, i, box)
+        corners = [(box.r_lo, box.v_lo), (box.r_hi, box.v_hi), (box.r_lo, box.v_hi),
+                   (box.r_hi, box.v_lo), (min(max(0.0, box.r_lo), box.r_hi), box.v_lo)]
+        pts = corners + [(rng.uniform(box.r_lo, box.r_hi), rng.uniform(box.v_lo, box.v_hi))
+                         for _ in range(n)]
+        for r0, v0 in pts:
+            o = fly_axis(bg, i, r0, v0, t_max=1.2 * d["T_land"] + 5)
+            evals += 1
+            for key, bound in (("r", d["R_b"]), ("v", d["V_b"]), ("u", d["u_b"]),
+                               ("t_land", d["T_land"])):
+                m = (bound - o[key]) / bound
+                if m < worst:
+                    worst, pt = m, {"axis": i, "r0": r0, "v0": v0, "quantity": key,
+                                    "bound": bound, "observed": o[key]}
+    return Step("bounds >= the solve_ivp closed loop (default gains, Table III box per axis: "
+                "corners, r0 = 0 and random states)",
+                Search({"box": "seed 000 Table III per axis", "gains": "DEFAULT_BOUNDED"},
+                       "solve_ivp RK45 1e-10 (two phases) on the SymPy law", evals, worst, pt, seed,
+                       relative=True))
+
+
+def claim_fixed_time() -> Claim:
+    """Fixed time from every state: s reaches 0 by T_s* (exact), then the sliding phase by
+    ``slide_time_global``; with |a_p,i| <= a_max the practical version with s_nb, theta."""
+    s = B.S
+    am_ = sp.Symbol("a_max", positive=True)
+    th = sp.Symbol("theta", positive=True)
+    vdot_bound = (-B.k1 * sp.Abs(s) ** (B.e1 + 1) - B.k2 * sp.Abs(s) ** (B.e2 + 1)
+                  + sp.Abs(s) * am_)
+    split = (-th * (B.k1 * sp.Abs(s) ** (B.e1 + 1) + B.k2 * sp.Abs(s) ** (B.e2 + 1))
+             - (1 - th) * (B.k1 * sp.Abs(s) ** (B.e1 + 1) + B.k2 * sp.Abs(s) ** (B.e2 + 1))
+             + sp.Abs(s) * am_)
+    hyp = (prove_identity(sp.expand(vdot_bound - split), "Theorem 1's split of V' (seed 000 (7))"),)
+    steps = list(claim_derivative().steps) + [
+        Step("s reaches 0 within T_s* = Gamma closed form (exact least bound)",
+             Cited(FIXED_TIME_REF, "fixed-time settling of the reaching law",
+                   tuple(claim_derivative().steps))),
+        Step("with |a_p| <= a_max, |s| enters s_nb = min{(a_max/((1-theta)k1))^(1/e1), "
+             "(a_max/((1-theta)k2))^(1/e2)} within (T(S) - T(s_nb))/theta",
+             Cited("seed 000, Theorem 1 (practical fixed time), eqs. (5)-(9)",
+                   "practical fixed-time stability", hyp)),
+    ]
+    return Claim("bounded-fixed-time", "issue 17", "Fixed-time / practical fixed-time landing",
+                 "(not in seed 000)", "T_land <= T_s* + T_r,global from every state; the "
+                 "landing set is |r| <= rho <= 0.1 m, |v| <= psi(rho) + s_nb <= 0.1 m/s "
+                 "(practical: r -> 0 only exponentially inside it)", steps, law=LAW)
+
+
+@cache
+def all_claims() -> tuple[Claim, ...]:
+    return (claim_derivative(), claim_finite(), claim_psi_monotone(), claim_slide_time(),
+            claim_invariants(), claim_fixed_time())
