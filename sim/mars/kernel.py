@@ -247,7 +247,10 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
                 if stop_landing:
                     dry_now = False  # the case ends at landing, above m_dry
         if dry_now and not has_landed:  # out of propellant before landing
-            fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, thd)  # noqa: F821
+            # all of it: m = m_dry at the located crossing by definition (the Hermite value
+            # there is m_dry to the bisection's 2^-60 of the step, or anything at all if a
+            # blown-up stage command made the interpolant wild: fuel above the load, issue 14)
+            fuel[i] = m0[i] - m_dry
         if sat:
             S[TSAT] += frac * h
         # lowest point of the step up to its end (landing, dry mass or the node) on the
@@ -273,12 +276,16 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
 
 def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     r0, v0, m0, dcoef, domega, dphase = C
+    (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
+     stop_landing, m_dry) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
      ts1x, ts2x, fexh) = R
     has_landed = S[LANDED] != 0.0
     dry = S[DRY] != 0.0
     landed[i] = has_landed
     fexh[i] = dry
+    if dry and stop_landing and not has_landed:
+        y[6] = m_dry  # the case stopped at the crossing: the end state has exactly m_dry
     t_land[i] = S[TLAND]
     if not has_landed:
         if not dry:

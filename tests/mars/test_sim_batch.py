@@ -272,3 +272,17 @@ def test_axis_at_rest_on_its_target_stays_there(axis: int) -> None:
         assert res.y_end[0, axis] == 0.0 and res.y_end[0, 3 + axis] == 0.0
     np.testing.assert_allclose(runs[0].landing_time, runs[2].landing_time, atol=T_TOL)
     np.testing.assert_allclose(runs[1].landing_time, runs[2].landing_time, atol=10 * T_TOL)
+
+
+@pytest.mark.parametrize("method", ["rk4", "dopri5"])
+def test_fuel_never_exceeds_the_load(method: str) -> None:
+    """Running dry ends with exactly m_dry and fuel m0 - m_dry, also when a blown-up stage
+    command makes the step's interpolant wild (issue 14: r_x = 1e-100, v_x = 0 reported
+    5.2e24 kg of fuel and a negative mass)."""
+    r0 = np.array([R0, [1e-100, R0[1], R0[2]]])
+    v0 = np.array([V0, [0.0, V0[1], V0[2]]])
+    m0 = np.array([M_DRY + 3.0, M0])
+    b = simulate_batch(r0, v0, m0, G, method=method)
+    assert b.fuel_exhausted[0] and b.fuel[0] == 3.0 and b.y_end[0, 6] == M_DRY
+    assert b.fuel_exhausted[1] or b.nonfinite[1] or b.landed[1]
+    assert np.all(b.fuel <= m0 - M_DRY) and np.all(b.y_end[:, 6] >= M_DRY)
