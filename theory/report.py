@@ -113,10 +113,9 @@ VERDICT_LEGEND = ("verdicts, strongest first: proved (every step proved by a pro
                   "proved-given (proved, given the cited published lemmas) / checked (rests on "
                   "a search that found no violation over a stated domain and budget) / "
                   "unproven / refuted (a counterexample, re-checked by an independent route)")
-NOTATION = ("Notation in the formulas: the signed power |x|^q sgn(x) (the paper's "
-            "|x|^q sgn(x), sig(x, q) in the code) is written with a left ceiling and a right "
-            "floor bracket around x, raised to q.  s1 = r per axis; subscripts i (axis) are "
-            "dropped in per-axis formulas.")
+NOTATION = ("Notation in the formulas: the signed power |x|^q sgn(x) of the paper (sig(x, q) "
+            "in the code) is written \u2308x\u230b^q; s1 = r per axis, and the axis subscript "
+            "i is dropped in per-axis formulas.")
 
 
 @dataclass(frozen=True)
@@ -376,7 +375,8 @@ def _bound_rows(spec: ReportSpec) -> list[tuple[str, ...]]:
 _TEX = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
         "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
         "<": r"\textless{}", ">": r"\textgreater{}", "|": r"\textbar{}", "—": "---",
-        "\u2264": r"\ensuremath{\leq}", "\u2265": r"\ensuremath{\geq}"}
+        "\u2264": r"\ensuremath{\leq}", "\u2265": r"\ensuremath{\geq}",
+        "\u2308": r"\ensuremath{\lceil}", "\u230b": r"\ensuremath{\rfloor}"}
 
 
 def tex(s: str) -> str:
@@ -525,6 +525,7 @@ table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding
 td.num{text-align:right;font-variant-numeric:tabular-nums}
 .refuted{color:#b00;font-weight:600}.proved,.proved-given,.cited{color:#070;font-weight:600}
 .checked{color:#850;font-weight:600}.unproven{color:#666;font-weight:600}
+td.proved,td.proved-given,td.checked,td.unproven,td.refuted{white-space:nowrap}
 .claim{border:1px solid #ddd;border-radius:6px;padding:.2em 1em .8em;margin:1.2em 0}
 .claim h3{margin-top:.6em}.meta{color:#555;font-size:.92em}
 .forms{width:100%;table-layout:fixed}.forms td{width:50%}
