@@ -119,4 +119,6 @@ def latex_breakable(expr: sp.Basic, limit: int = 160) -> str:
 def mathml(expr: sp.Basic, display: bool = True) -> str:
     """A ``<math>`` element (presentation MathML) for ``expr``."""
     body = _numeric_entities(_MathML().doprint(expr))
+    # SymPy 1.14 writes strict relations unescaped (<mo><</mo>): not well-formed XML
+    body = body.replace("<mo><</mo>", "<mo>&lt;</mo>").replace("<mo>></mo>", "<mo>&gt;</mo>")
     return f"<math display='{'block' if display else 'inline'}'>{body}</math>"

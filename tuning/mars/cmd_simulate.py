@@ -204,6 +204,12 @@ def _print_cases(recs: list[dict[str, Any]], console: Console) -> None:
 @click.option("--json", "as_json", is_flag=True, help="print one JSON object")
 @click.option("--out", type=click.Path(file_okay=False, path_type=Path), default=None,
               help="write summary.json, cases.json, cases.csv to DIR")
+@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
+              default=None, help="write figures (PNG) to DIR: one case: thrust against time "
+                                 "with the limit, s1-s2 phase portrait; a campaign: also the "
+                                 "trajectory overlays (first 300 cases re-flown with RK4) and "
+                                 "the final positions/velocities of every case; --fig6: "
+                                 "settling against s1x(0) beside the bounds")
 def command(gains_path: Path | None, law: str, dispersion: str | None,
             initial_states: Path | None, cases: int | None, seed: int, disturbance: str,
             dist_amplitude: float | None, thrust_max: float | None, limit: str, drag: str,
@@ -211,7 +217,7 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
             method: str, rtol: float, atol: float, max_step: float, eps: float | None,
             t_max: float, land_r: float, land_v: float, reference: bool,
             workers: int | None, scheduler: str | None, fig6: bool, as_json: bool,
-            out: Path | None) -> None:
+            out: Path | None, plot_dir: Path | None) -> None:
     """Simulate seed 000's closed loop (corrected law by default) and summarize the landings."""
     gains = resolve_gains(gains_path)
     _choice("--law", law, list(LAWS))
@@ -231,6 +237,8 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
         if out is not None:
             out.mkdir(parents=True, exist_ok=True)
             (out / "fig6.json").write_text(json.dumps(res6, indent=1))
+        if plot_dir is not None:
+            _plot_fig6(res6, plot_dir, as_json)
         return
     if dispersion is not None and initial_states is not None:
         raise ParameterError("--dispersion", dispersion, "cannot be combined with "
@@ -280,6 +288,27 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
         _print_cases(recs, console)
     if out is not None:
         _write(out, summ, recs)
+    if plot_dir is not None:
+        _plot(gains, res, opts, (r0, v0, m0), plot_dir, as_json)
+
+
+def _plot(gains: Gains, res: Any, opts: dict[str, Any], states: tuple, plot_dir: Path,
+          quiet: bool) -> None:
+    from lgw.tuning.mars.figures import simulation_figures, write
+
+    paths = write(simulation_figures(gains, res, opts, states), plot_dir)
+    if not quiet:
+        click.echo("wrote " + ", ".join(str(p) for p in paths))
+
+
+def _plot_fig6(res6: dict[str, Any], plot_dir: Path, quiet: bool) -> None:
+    from lgw.tuning.figures import save_png
+    from lgw.tuning.mars.figures import settling_figure
+
+    path = save_png(settling_figure(res6, "Seed 000 Fig. 6: settling against s1x(0)"),
+                    plot_dir / "settling_fig6.png")
+    if not quiet:
+        click.echo(f"wrote {path}")
 
 
 def _write(out: Path, summ: dict[str, Any], recs: list[dict[str, Any]]) -> None:
