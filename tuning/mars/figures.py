@@ -275,8 +275,10 @@ def report_figures(gains: Gains, opts: FigureOptions = FigureOptions()) -> list[
     figs = [
         Figure("mc_trajectories.png",
                f"Monte Carlo trajectories and velocities (seed 000 Fig. 7): {mc_note}.  "
-               f"{int(mc.landed.sum())} landed within {LAND_POS_TOL:g} m; "
-               f"{int(mc.ground_contact.sum())} touched the ground first.",
+               f"{int(mc.landed.sum())} landed (|r| <= {LAND_POS_TOL:g} m); "
+               f"{int(mc.ground_contact.sum())} went below r_z = 0 first; "
+               f"{int(mc.fuel_exhausted.sum())} ran out of propellant (m_dry), where their "
+               "runs stop.",
                trajectories_figure(mc, "Seed 000 Fig. 7: 300-case Monte Carlo, "
                                    "trajectories and velocities", opts.overlay)),
         Figure("mc_dispersion.png",
