@@ -385,10 +385,15 @@ def tex(s: str) -> str:
 
 
 def _tex_math(e: sp.Basic) -> str:
+    lines = RM.split_lines(e, 80)
+    if lines is not None:  # a long sum: one line per group of terms
+        return (r"\begin{multline*}" + r" \\ ".join(t for t, _ in lines)
+                + r"\end{multline*}")
     s = RM.latex_breakable(e)
-    if len(s) <= 160:
+    if RM.visual_width(s) <= 80:
         return r"\[" + s + r"\]"
-    # long: inline display-style math in its own paragraph, which TeX breaks at operators
+    # long, without a sum to break at: inline display-style math in its own paragraph,
+    # which TeX breaks at relations and operators
     return r"\par{\small\noindent$\displaystyle " + s + r"$\par}"
 
 
@@ -494,7 +499,8 @@ def render_latex(claims: list[Claim], spec: ReportSpec,
     for sec in sections:
         L.append(r"\section{" + tex(sec.title) + "}")
         if sec.columns:
-            width = f"{15.5 / len(sec.columns):.2f}cm"
+            n = len(sec.columns)
+            width = rf"\dimexpr(\linewidth-{2 * n}\tabcolsep)/{n}\relax"
             L += [r"{\scriptsize\begin{longtable}{" + ("p{" + width + "}") * len(sec.columns)
                   + "}", " & ".join(tex(c) for c in sec.columns) + r" \\ \hline"]
             L += [" & ".join(tex(c) for c in row) + r" \\" for row in sec.rows]
@@ -528,7 +534,7 @@ td.num{text-align:right;font-variant-numeric:tabular-nums}
 td.proved,td.proved-given,td.checked,td.unproven,td.refuted{white-space:nowrap}
 .claim{border:1px solid #ddd;border-radius:6px;padding:.2em 1em .8em;margin:1.2em 0}
 .claim h3{margin-top:.6em}.meta{color:#555;font-size:.92em}
-.forms{width:100%;table-layout:fixed}.forms td{width:50%}
+.forms{width:100%;table-layout:fixed}.forms th{width:8.5em;text-align:left}
 .eq{overflow-x:auto;overflow-y:hidden;padding:.15em 0;max-width:100%}
 math[display=block]{margin:.2em 0}
 details{margin:.2em 0 .4em}summary{cursor:pointer;color:#333}
@@ -553,7 +559,7 @@ def _h(s: str) -> str:
 
 
 def _html_math(e: sp.Basic) -> str:
-    return f"<div class='eq'>{RM.mathml(e)}</div>"
+    return f"<div class='eq'>{RM.mathml_lines(e)}</div>"
 
 
 def _html_kv(rows: Sequence[tuple[str, str]]) -> str:
@@ -665,10 +671,10 @@ def render_html(claims: list[Claim], spec: ReportSpec,
                   f"<p class='meta'>equations {_h(c.equations)}"
                   + (f"; law: {_h(c.law)}" if c.law else "") + f"; scope: {_h(c.scope)}. "
                   f"<a class='back' href='#{_summary_anchor(c.id)}'>back to the summary</a></p>",
-                  "<table class='forms'><tr><th>the paper (as printed)</th><th>derived by the "
-                  "workbench</th></tr><tr>"
-                  f"<td>{_h(c.paper)}" + "".join(_html_math(e) for e in paper) + "</td>"
-                  f"<td>{_h(c.derived)}" + "".join(_html_math(e) for e in derived)
+                  "<table class='forms'><tr><th>the paper (as printed)</th>"
+                  f"<td>{_h(c.paper)}" + "".join(_html_math(e) for e in paper) + "</td></tr>"
+                  f"<tr><th>derived by the workbench</th><td>{_h(c.derived)}"
+                  + "".join(_html_math(e) for e in derived)
                   + ("<p class='meta'>(the derived form is the printed one)</p>"
                      if paper and derived and _same(paper, derived) else "")
                   + "</td></tr></table>",

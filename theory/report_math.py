@@ -118,7 +118,85 @@ def latex_breakable(expr: sp.Basic, limit: int = 160) -> str:
 
 def mathml(expr: sp.Basic, display: bool = True) -> str:
     """A ``<math>`` element (presentation MathML) for ``expr``."""
+    return f"<math display='{'block' if display else 'inline'}'>{mathml_body(expr)}</math>"
+
+
+# --- long formulas: broken into lines at the terms of a sum --------------------------------
+
+_REL_TEX = {"==": "=", "<=": r"\leq", "<": "<", ">=": r"\geq", ">": ">"}
+_REL_MML = {"==": "=", "<=": "&#x2264;", "<": "&lt;", ">=": "&#x2265;", ">": "&gt;"}
+
+
+def _terms(expr: sp.Expr) -> list[tuple[str, sp.Expr]]:
+    """The terms of a sum in printing order, each as (sign, term without its sign)."""
+    out = []
+    for t in _Latex()._as_ordered_terms(expr, order=None):
+        if t.could_extract_minus_sign():
+            out.append(("-", -t))
+        else:
+            out.append(("+", t))
+    return out
+
+
+def visual_width(tex: str) -> int:
+    """About how many glyphs a LaTeX string shows (commands count one, braces and scripts
+    markers none): the measure for breaking lines."""
+    s = re.sub(r"\\(left|right)\b", "", tex)
+    s = re.sub(r"\\[A-Za-z]+", "x", s)
+    return len(re.sub(r"[{}^_\s]", "", s))
+
+
+def split_lines(expr: sp.Basic, width: int = 48) -> list[tuple[str, str]] | None:
+    """A long relation or sum broken at the terms of its sum: one (LaTeX, MathML) pair per
+    line.  None when the formula is short (``width`` LaTeX characters) or has no sum to break
+    at (the callers then print it whole)."""
+    if visual_width(latex(expr)) <= width:
+        return None
+    head_t = head_m = tail_t = tail_m = ""
+    body = None
+    if isinstance(expr, sp.core.relational.Relational):
+        op = expr.rel_op
+        if isinstance(expr.rhs, sp.Add) and len(latex(expr.rhs)) >= len(latex(expr.lhs)):
+            head_t = latex(expr.lhs) + f" {_REL_TEX[op]} "
+            head_m = mathml_body(expr.lhs) + f"<mo>{_REL_MML[op]}</mo>"
+            body = expr.rhs
+        elif isinstance(expr.lhs, sp.Add):
+            tail_t = f" {_REL_TEX[op]} " + latex(expr.rhs)
+            tail_m = f"<mo>{_REL_MML[op]}</mo>" + mathml_body(expr.rhs)
+            body = expr.lhs
+    elif isinstance(expr, sp.Add):
+        body = expr
+    if body is None:
+        return None
+    lines: list[tuple[str, str]] = []
+    cur_t, cur_m = head_t, head_m
+    for i, (sign, term) in enumerate(_terms(body)):
+        t_tex, t_mml = latex(term), mathml_body(term)
+        if i == 0 and sign == "+":
+            piece_t, piece_m = t_tex, t_mml
+        else:
+            piece_t, piece_m = f" {sign} {t_tex}", f"<mo>{sign}</mo>{t_mml}"
+        if visual_width(cur_t + piece_t) > width and cur_t.strip():
+            lines.append((cur_t, cur_m))
+            cur_t, cur_m = "", ""
+        cur_t += piece_t
+        cur_m += piece_m
+    lines.append((cur_t + tail_t, cur_m + tail_m))
+    return lines if len(lines) > 1 else None
+
+
+def mathml_body(expr: sp.Basic) -> str:
+    """The presentation MathML of ``expr`` without the ``<math>`` element."""
     body = _numeric_entities(_MathML().doprint(expr))
     # SymPy 1.14 writes strict relations unescaped (<mo><</mo>): not well-formed XML
-    body = body.replace("<mo><</mo>", "<mo>&lt;</mo>").replace("<mo>></mo>", "<mo>&gt;</mo>")
-    return f"<math display='{'block' if display else 'inline'}'>{body}</math>"
+    return body.replace("<mo><</mo>", "<mo>&lt;</mo>").replace("<mo>></mo>", "<mo>&gt;</mo>")
+
+
+def mathml_lines(expr: sp.Basic, width: int = 48) -> str:
+    """A ``<math>`` block; a long formula as a left-aligned table of lines (browsers do not
+    break MathML lines themselves)."""
+    lines = split_lines(expr, width)
+    if lines is None:
+        return mathml(expr)
+    rows = "".join(f"<mtr><mtd><mrow>{m}</mrow></mtd></mtr>" for _, m in lines)
+    return f"<math display='block'><mtable columnalign='left'>{rows}</mtable></math>"
