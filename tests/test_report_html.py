@@ -201,3 +201,22 @@ def test_chromium_renders_the_report(tmp_path: Path) -> None:
     for p in shots:
         with Image.open(p) as im:
             assert len(im.convert("RGB").getcolors(1 << 20) or ()) > 8, p.name
+
+
+def test_mathml_names_and_long_lines() -> None:
+    """Gamma prints as the capital letter, a user function keeps its case, a dotted symbol
+    gets its dot, and a long sum becomes several well-formed lines holding every term."""
+    from lgw.theory import report_math as RM
+
+    x, y = sp.symbols("x y", positive=True)
+    assert "&#x393;" in RM.mathml(sp.gamma(x))
+    assert "<mi>V</mi>" in RM.mathml(sp.Function("V")(x))
+    assert "<mover>" in RM.mathml(sp.Symbol("Vdot_2"))
+    long = sp.Eq(sp.Symbol("a"), sum(sp.Symbol(f"beta_{i}") * x ** (i + y) for i in range(12)))
+    lines = RM.split_lines(long)
+    assert lines is not None and len(lines) >= 2
+    block = RM.mathml_lines(long)
+    xml.dom.minidom.parseString(block)
+    assert block.count("<mtr>") == len(lines)
+    assert sum(t.count(r"\beta") for t, _ in lines) == 12
+    assert RM.split_lines(sp.Eq(x, y)) is None

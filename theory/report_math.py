@@ -64,9 +64,12 @@ class _MathML(MathMLPresentationPrinter):
         return node
 
     def _print_Function(self, e: sp.Basic):
-        # SymPy lower-cases function names (V(t) would print as v(t))
+        # SymPy lower-cases names it has no symbol for (V(t) would print as v(t)); keep its
+        # translations (gamma as the capital Gamma, ...)
+        tag = self.mathml_tag(e)
+        name = type(e).__name__
         mi = self.dom.createElement("mi")
-        mi.appendChild(self.dom.createTextNode(type(e).__name__))
+        mi.appendChild(self.dom.createTextNode(name if tag == name.lower() else tag))
         row = self.dom.createElement("mrow")
         row.appendChild(mi)
         row.appendChild(self._paren_comma_separated(*e.args))
