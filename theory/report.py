@@ -273,12 +273,12 @@ def _md_evidence(ev: Any, indent: str, shown: tuple[sp.Basic, ...] = ()) -> list
         L += [""] + ([f"{indent}{vw.formula_note}", ""] if vw.formula_note else [])
         L += _md_math(f, indent)
     if vw.rows:
-        L += [""] + [indent + x for x in _md_table(("", ""), vw.rows)]
+        L += [""] + [indent + x for x in _md_table(("item", "value"), vw.rows)]
     for j, h in enumerate(vw.hypotheses, 1):
         L += ["", *_md_step(h, f"hypothesis {j}", indent + "   ")]
     if vw.witness is not None:
-        L += ["", f"{indent}witness:", ""] + [indent + x for x in
-                                               _md_table(("", ""), _witness_rows(vw.witness))]
+        rows = _md_table(("item", "value"), _witness_rows(vw.witness))
+        L += ["", f"{indent}witness:", ""] + [indent + x for x in rows]
     return L
 
 
@@ -352,11 +352,11 @@ def render_markdown(claims: list[Claim], spec: ReportSpec,
                 for i, s in enumerate(c.remarks, 1):
                     L += [*_md_step(s, f"R{i}"), ""]
             if c.counterexample:
-                L += ["Counterexample:", ""] + _md_table(("", ""),
+                L += ["Counterexample:", ""] + _md_table(("item", "value"),
                                                          _witness_rows(c.counterexample))
             if c.numbers:
                 L += ["", "Numbers:", ""] + _md_table(
-                    ("", ""), [(str(k), _short(v)) for k, v in c.numbers.items()])
+                    ("item", "value"), [(str(k), _short(v)) for k, v in c.numbers.items()])
     if coverage:
         L += ["", "## Coverage of the paper", ""]
         L += _md_table(("item", "kind", "claims"), [(r.item, r.kind, r.text()) for r in coverage])
