@@ -27,9 +27,11 @@ def test_sections_render_in_every_format() -> None:
     md = render_markdown([], report_spec(g, {"x": {}}), [SEC])
     assert "| method | \\|r\\| m |" in md and "| y\\|z | - |" in md and "![T](f.png)" in md
     tex = render_latex([], report_spec(g, {"x": {}}), [SEC])
-    assert r"x\_1 & 1.5 \\" in tex and r"a $<$ b \& c" in tex and "includegraphics" in tex
+    assert r"x\_1 & 1.5 \\" in tex and r"a \textless{} b \& c" in tex and "includegraphics" in tex
     html = render_html([], report_spec(g, {"x": {}}), [SEC])
-    assert "<td>y|z</td>" in html and "a &lt; b &amp; c" in html and "src='f.png'" in html
+    # the HTML never links a file: without the image bytes it says so, with them it embeds
+    assert "<td>y|z</td>" in html and "a &lt; b &amp; c" in html and "src='f.png'" not in html
+    assert "not embedded" in html
     spec = report_spec(g, {"x": {}})
     assert render_markdown([], spec) == render_markdown([], spec, ())
 

@@ -12,6 +12,7 @@ gain-dependent statements judged for that gain set (scope "gain-set").
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import random
@@ -52,6 +53,46 @@ EXAMPLE_GAINS = {"beta1": 0.2, "beta2": 0.05, "alpha1": 0.5, "alpha2": 0.1,
 # Rational points for symbolic counterexamples (exact arithmetic).
 PT = {b1: sp.Integer(1), b2: sp.Integer(1), a1: sp.Integer(1), a2: sp.Integer(1),
       q1: sp.Rational(1, 2), q2: sp.Integer(2), g1: sp.Rational(1, 2), g2: sp.Integer(2)}
+
+
+# --- Display forms: the formulas the report renders (paper_expr / derived_expr).  They are
+# built from the same SymPy objects the proofs use; no verdict depends on them.
+S1 = sp.Symbol("s_1", real=True)
+A_CMD, G_I, AM_I, AP_I = sp.symbols("a g a_m a_p", real=True)
+S1DOT, S2DOT = sp.symbols("sdot_1 sdot_2", real=True)
+V1DOT, V2DOT, V1S, V2S = sp.symbols("Vdot_1 Vdot_2 V_1 V_2", real=True)
+T1S, T2S, T1X, T2X, T3S = sp.symbols("T_1 T_2 T_1^* T_2^* T_3", positive=True)
+T_LAND = sp.Symbol("t_land", positive=True)
+MI = sp.Symbol("M_i", positive=True)
+
+
+def _disp(expr: sp.Expr) -> sp.Expr:
+    """expr in the paper's coordinates: the second surface (21) as s2, r as s1, the gravity,
+    drag and disturbance components as g, a_m, a_p."""
+    return expr.xreplace({M.surface2(): S2}).xreplace({r: S1, M.grav: G_I, M.am: AM_I,
+                                                       ap: AP_I})
+
+
+def _with_exprs(claim: Claim, paper=None, derived=None) -> Claim:
+    """``claim`` (made elsewhere, e.g. lgw.theory.settling_proofs) with formulas to render."""
+    return dataclasses.replace(claim, paper_expr=paper, derived_expr=derived)
+
+
+def _settling_exprs() -> dict[str, tuple]:
+    """Lemma 2 (2)-(3) and the least upper bound T* in the symbols of settling_proofs."""
+    a_, b_, k_, V_ = SP.a, SP.b, SP.k, SP.V
+    p_, g_ = sp.symbols("p g", positive=True)
+    T, Ts, Vd = sp.Symbol("T", positive=True), sp.Symbol("T^*", positive=True), \
+        sp.Symbol("Vdot", real=True)
+    rate = (a_ * V_**p_ + b_ * V_**g_) ** k_
+    integral = sp.Integral(1 / rate, (V_, 0, sp.oo))
+    hyp = sp.Le(Vd, -rate, evaluate=False)
+    polyakov = sp.Le(T, SP.polyakov_expr(a_, b_, p_, g_, k_), evaluate=False)
+    return {"lemma2": ((hyp, polyakov), (hyp, sp.Le(T, integral, evaluate=False), polyakov)),
+            "exact-bound": ((), (sp.Eq(Ts, integral, evaluate=False),
+                                 sp.Eq(Ts, SP.exact_expr(a_, b_, p_, g_, k_), evaluate=False),
+                                 sp.Le(Ts, SP.polyakov_expr(a_, b_, p_, g_, k_),
+                                       evaluate=False)))}
 
 
 def _inherit(claim: Claim) -> tuple[Step, ...]:
@@ -97,9 +138,16 @@ def _at(expr: sp.Expr, pt: dict) -> sp.Expr:
 def surface_claim() -> Claim:
     steps = [prove_identity(M.surface2().subs(v, M.reaching_law_rhs(r)),
                             "s2 of (21) vanishes exactly when s1' = v obeys the reaching law (16)")]
+    rd = sp.Symbol("r_d", real=True)
+    paper = (sp.Eq(S1, sp.Symbol("r", real=True) - rd, evaluate=False),
+             sp.Eq(S1DOT, _disp(M.reaching_law_rhs(r)), evaluate=False),
+             sp.Eq(S2, S1DOT - _disp(M.reaching_law_rhs(r)), evaluate=False))
+    derived = (sp.Equivalent(sp.Eq(S2, 0), sp.Eq(S1DOT, _disp(M.reaching_law_rhs(r))),
+                             evaluate=False),)
     return Claim("surface2", "(15), (16), (21)", "The second surface encodes the reaching law",
                  "once s2 = 0 the first reaching law (16) is established automatically",
-                 "s2 = 0  <=>  v = -beta1 sig(s1,q1) - beta2 sig(s1,q2)", steps)
+                 "s2 = 0  <=>  v = -beta1 sig(s1,q1) - beta2 sig(s1,q2)", steps,
+                 paper_expr=paper, derived_expr=derived)
 
 
 @cache
@@ -116,7 +164,17 @@ def v1dot_axis_claim() -> Claim:
     return Claim("V1dot", "(19)-(20)", "Lyapunov derivative of the first surface, per axis",
                  "V1' = s1' s1 = -beta1|s1|^(q1+1) - beta2|s1|^(q2+1) <= -(beta1 2^((q1+1)/2) "
                  "V1^((q1+1)/2) + beta2 2^((q2+1)/2) V1^((q2+1)/2))",
-                 "Per axis both relations are equalities (proved).", steps)
+                 "Per axis both relations are equalities (proved).", steps,
+                 paper_expr=(sp.Eq(V1DOT, _disp(target), evaluate=False),
+                             sp.Le(V1DOT, _lemma2_rhs(b1, b2, q1, q2, V1S), evaluate=False)),
+                 derived_expr=(sp.Eq(V1DOT, _disp(target), evaluate=False),
+                               sp.Eq(V1DOT, _lemma2_rhs(b1, b2, q1, q2, V1S), evaluate=False)))
+
+
+def _lemma2_rhs(gain1, gain2, e1_, e2_, Vs: sp.Symbol) -> sp.Expr:
+    """-(gain1 2^((e1+1)/2) V^((e1+1)/2) + gain2 2^((e2+1)/2) V^((e2+1)/2)): (20), (29)."""
+    return -(gain1 * 2 ** ((e1_ + 1) / 2) * Vs ** ((e1_ + 1) / 2)
+             + gain2 * 2 ** ((e2_ + 1) / 2) * Vs ** ((e2_ + 1) / 2))
 
 
 def _power_mean_search(q_lo: float, q_hi: float, factor, statement: str, seed: int) -> Step:
@@ -208,10 +266,15 @@ def t1_claim() -> Claim:
                           "i != j, so the 3-axis time is the max over axes of the per-axis time")
     steps = [*_inherit(v1dot_axis_claim()), *_inherit(SP.lemma2()),
              *_inherit(SP.exact_bound_claim()), i1, i2, dec]
+    T18 = _bound_exprs()["T1 (18)"]
     return Claim("T1", "(18)", "Theorem 2: fixed-time convergence of the first surface",
                  "T1 <= 1/(beta1 (1-q1) 2^((q1-1)/2)) + 1/(beta2 (q2-1) 2^((q2-1)/2))",
                  "Holds per axis under (16).  Least upper bound: T1* = Gamma(m)Gamma(1-m)/"
-                 "(beta1 (q2-q1)) (beta1/beta2)^m, m = (1-q1)/(q2-q1).", steps)
+                 "(beta1 (q2-q1)) (beta1/beta2)^m, m = (1-q1)/(q2-q1).", steps,
+                 paper_expr=(sp.Le(T1S, T18, evaluate=False),),
+                 derived_expr=(sp.Le(T1S, T1X, evaluate=False),
+                               sp.Eq(T1X, SP.exact_expr(b1, b2, q1, q2, 1), evaluate=False),
+                               sp.Le(T1X, T18, evaluate=False)))
 
 
 # --- (22)-(29): the second surface and the guidance ---------------------------------------
@@ -249,7 +312,10 @@ def s2dot24_claim() -> Claim:
                  "s2' = a + g + a_m - beta1^2 q1|s1|^(2q1-1)sgn(s1) - beta2^2 q2|s1|^(2q2-1)"
                  "sgn(s1) - beta1 beta2 (q1+q2)|s1|^(q1+q2-1)sgn(s1)",
                  "(24) substitutes the reaching law (16) for s1' = v, which holds only on s2 = 0.  "
-                 "In general s2' = (24) + (beta1 q1|s1|^(q1-1) + beta2 q2|s1|^(q2-1)) s2.", steps)
+                 "In general s2' = (24) + (beta1 q1|s1|^(q1-1) + beta2 q2|s1|^(q2-1)) s2.", steps,
+                 paper_expr=(sp.Eq(S2DOT, _disp(printed), evaluate=False),),
+                 derived_expr=(sp.Eq(S2DOT, _disp(printed) + _disp(_dbeta()) * S2,
+                                     evaluate=False),))
 
 
 def _v2dot_residual(law: str, with_ap: bool = False) -> sp.Expr:
@@ -268,6 +334,9 @@ def v2dot_claim(law: str) -> Claim:
     paper = ("substituting (25) into (28): V2' = s2^T[-alpha1|s2|^g1 sgn(s2) - alpha2|s2|^g2 "
              "sgn(s2)] = -alpha1|s2|^(g1+1) - alpha2|s2|^(g2+1) <= -(alpha1 2^((g1+1)/2) "
              "V2^((g1+1)/2) + alpha2 2^((g2+1)/2) V2^((g2+1)/2))")
+    law29 = -a1 * sp.Abs(S2) ** (g1 + 1) - a2 * sp.Abs(S2) ** (g2 + 1)
+    paper_e = (sp.Eq(V2DOT, law29, evaluate=False),
+               sp.Le(V2DOT, _lemma2_rhs(a1, a2, g1, g2, V2S), evaluate=False))
     if law == "corrected":
         steps = [prove_branches(resid, (r, S2), "V2' = s2 s2' = -alpha1|s2|^(g1+1) - "
                                 "alpha2|s2|^(g2+1) under the corrected law"),
@@ -275,7 +344,7 @@ def v2dot_claim(law: str) -> Claim:
         return Claim("V2dot-corrected", "(27)-(29)", "Lyapunov derivative of the second "
                      "surface, corrected law", paper,
                      "Holds exactly for the corrected law (exact cancellation of s2').",
-                     steps, law=law)
+                     steps, law=law, paper_expr=paper_e, derived_expr=paper_e)
     extra = _surface_coords(_dbeta()) * S2**2
     pt = {**PT, r: sp.Integer(1), S2: sp.Integer(1), M.grav: 0, M.am: 0}
     steps = [prove_branches(resid - extra, (r, S2), "V2' - (29) = (beta1 q1|s1|^(q1-1) + "
@@ -286,7 +355,9 @@ def v2dot_claim(law: str) -> Claim:
     return Claim("V2dot-printed", "(27)-(29)", "Lyapunov derivative of the second surface, "
                  "printed law (25)", paper,
                  "False off s2 = 0: V2' = (29) + (beta1 q1|s1|^(q1-1) + beta2 q2|s1|^(q2-1)) s2^2, "
-                 "the extra term is positive and unbounded near s1 = 0.", steps, law=law)
+                 "the extra term is positive and unbounded near s1 = 0.", steps, law=law,
+                 paper_expr=paper_e,
+                 derived_expr=(sp.Eq(V2DOT, law29 + _disp(_dbeta()) * S2**2, evaluate=False),))
 
 
 @cache
@@ -299,7 +370,11 @@ def laws_agree_claim() -> Claim:
                             "hence the two laws agree on s2 = 0")]
     return Claim("laws-agree", "(25)", "The printed and the corrected guidance coincide on s2 = 0",
                  "(the paper has one law)", "corrected (25') = printed (25) - (beta1 q1 |s1|^(q1-1)"
-                 " + beta2 q2|s1|^(q2-1)) s2", steps)
+                 " + beta2 q2|s1|^(q2-1)) s2", steps,
+                 paper_expr=(sp.Eq(A_CMD, _disp(M.law_printed()), evaluate=False),),
+                 derived_expr=(sp.Eq(A_CMD, _disp(M.law_corrected()), evaluate=False),
+                               sp.Eq(A_CMD, _disp(M.law_printed()) - _disp(_dbeta()) * S2,
+                                     evaluate=False)))
 
 
 def _t2_printed_witness() -> Step:
@@ -331,6 +406,7 @@ def _t2_printed_witness() -> Step:
 def t2_claim(law: str) -> Claim:
     paper = ("T2 <= 1/(alpha1 (1-g1) 2^((g1-1)/2)) + 1/(alpha2 (g2-1) 2^((g2-1)/2)), "
              "independent of the initial state")
+    T26 = sp.Le(T2S, _bound_exprs()["T2 (26)"], evaluate=False)
     if law == "corrected":
         i1, i2 = _route_identity(a1, a2, g1, g2)
         steps = [*_inherit(v2dot_claim("corrected")), *_inherit(SP.lemma2()),
@@ -338,12 +414,17 @@ def t2_claim(law: str) -> Claim:
         return Claim("T2-corrected", "(26)", "Theorem 3: fixed-time convergence of the second "
                      "surface, corrected law", paper,
                      "Holds for the corrected law; least upper bound T2* = Gamma(m)Gamma(1-m)/"
-                     "(alpha1 (g2-g1)) (alpha1/alpha2)^m, m = (1-g1)/(g2-g1).", steps, law=law)
+                     "(alpha1 (g2-g1)) (alpha1/alpha2)^m, m = (1-g1)/(g2-g1).", steps, law=law,
+                     paper_expr=(T26,),
+                     derived_expr=(sp.Le(T2S, T2X, evaluate=False),
+                                   sp.Eq(T2X, SP.exact_expr(a1, a2, g1, g2, 1), evaluate=False),
+                                   sp.Le(T2X, _bound_exprs()["T2 (26)"], evaluate=False)))
     # the trajectory witness first: it is the claim's counterexample (Claim.counterexample)
     steps = [_t2_printed_witness(), *_inherit(v2dot_claim("printed"))]
     return Claim("T2-printed", "(26)", "Theorem 3: fixed-time convergence of the second surface, "
                  "printed law (25)", paper,
-                 "False for the printed law: s2 is still far from 0 at T2.", steps, law=law)
+                 "False for the printed law: s2 is still far from 0 at T2.", steps, law=law,
+                 paper_expr=(T26,))
 
 
 # --- How T1 and T2 combine: the landing time ---------------------------------------------
@@ -422,7 +503,10 @@ def landing_claim() -> Claim:
                  "argument for max{T1, T2} is invalid (s1 follows (16) only once s2 = 0; "
                  "remark); the conclusion itself rests on a search that found no violation "
                  "(checked, on a slice of the domain).",
-                 (*steps_sound, search), law="corrected", remarks=(paper_step,))
+                 (*steps_sound, search), law="corrected", remarks=(paper_step,),
+                 paper_expr=(sp.Le(T_LAND, sp.Max(T1S, T2S), evaluate=False),),
+                 derived_expr=(sp.Le(T_LAND, T1S + T2S, evaluate=False),
+                               sp.Le(T_LAND, T1X + T2X, evaluate=False)))
 
 
 # --- Remark 1: minimum tf -------------------------------------------------------------------
@@ -593,7 +677,10 @@ def s2_neighborhood_claim() -> Claim:
                  "|s2i| <= min{(a_max/((1-theta1)alpha1i))^(1/g1), (a_max/((1-theta1)alpha2i))"
                  "^(1/g2)}", "Holds for the corrected law (direct proof; the paper's use of "
                  "Theorem 1 with a state-dependent eta is not valid as written, the bound is).  "
-                 "Reached and never left.", steps, law="corrected", remarks=(remark,))
+                 "Reached and never left.", steps, law="corrected", remarks=(remark,),
+                 paper_expr=(sp.Le(sp.Abs(S2), _bound_exprs()["s2 nbhd (39)"], evaluate=False),),
+                 derived_expr=(sp.Le(sp.Abs(S2), _bound_exprs()["s2 nbhd (39)"],
+                                     evaluate=False),))
 
 
 def _practical_time_identity(gain1, gain2, e1_, e2_, theta, eq: str) -> Step:
@@ -615,7 +702,15 @@ def t2_practical_claim() -> Claim:
                  "T2i <= 1/(alpha1i theta1 (1-g1) 2^((g1-1)/2)) + 1/(alpha2i theta1 (g2-1) "
                  "2^((g2-1)/2))", "Holds (corrected law).  Sharper: (T2* - T2(M))/theta1, the "
                  "exact comparison time from infinity to the neighbourhood boundary M.", steps,
-                 law="corrected")
+                 law="corrected",
+                 paper_expr=(sp.Le(T2S, _bound_exprs()["T2 practical (40)"], evaluate=False),),
+                 derived_expr=(sp.Le(T2S, _bound_exprs()["T2 practical (40)"],
+                                     evaluate=False),))
+
+
+def _nbhd31() -> sp.Expr:
+    """(31) with M_i, the s2 neighbourhood (39), kept as a symbol."""
+    return sp.Min((MI / ((1 - th2) * b1)) ** (1 / q1), (MI / ((1 - th2) * b2)) ** (1 / q2))
 
 
 @cache
@@ -633,7 +728,10 @@ def s1_neighborhood_claim() -> Claim:
              *_neighbourhood_steps(b1, b2, q1, q2, Mi, th2, "s1")]
     return Claim("s1-neighborhood", "(31), (41)-(44)", "Landing-error neighbourhood",
                  "|r_i| <= min{(M_i/((1-theta2)beta1i))^(1/q1), (M_i/((1-theta2)beta2i))^(1/q2)}",
-                 "Holds after s2 has entered (39) (corrected law).", steps, law="corrected")
+                 "Holds after s2 has entered (39) (corrected law).", steps, law="corrected",
+                 paper_expr=(sp.Le(sp.Abs(S1), _nbhd31(), evaluate=False),),
+                 derived_expr=(sp.Le(sp.Abs(S1), _nbhd31(), evaluate=False),
+                               sp.Eq(MI, _bound_exprs()["s2 nbhd (39)"], evaluate=False)))
 
 
 @cache
@@ -644,7 +742,10 @@ def t1_practical_claim() -> Claim:
                  "T1i <= 1/(beta1i theta2 (1-q1) 2^((q1-1)/2)) + 1/(beta2i theta2 (q2-1) "
                  "2^((q2-1)/2))",
                  "Holds, counted from the time s2 enters (39), not from t = 0.", steps,
-                 law="corrected")
+                 law="corrected",
+                 paper_expr=(sp.Le(T1S, _bound_exprs()["T1 practical (45)"], evaluate=False),),
+                 derived_expr=(sp.Le(T1S, _bound_exprs()["T1 practical (45)"],
+                                     evaluate=False),))
 
 
 @cache
@@ -666,7 +767,11 @@ def t3_claim() -> Claim:
                  "T3i <= max{(40), (45)}",
                  "The sound bound is (40) + (45) (proved); the paper's max is unproven (its "
                  "argument is invalid, see remark; not searched yet).", steps,
-                 law="corrected", remarks=(remark,))
+                 law="corrected", remarks=(remark,),
+                 paper_expr=(sp.Le(T3S, sp.Max(sp.Symbol("T_(40)"), sp.Symbol("T_(45)")),
+                                   evaluate=False),),
+                 derived_expr=(sp.Le(T3S, sp.Symbol("T_(40)") + sp.Symbol("T_(45)"),
+                                     evaluate=False),))
 
 
 # printed numbers of seed 000 (Part 1 and Part 2), and their rounding (4 decimals)
@@ -728,7 +833,10 @@ def drag_claim() -> Claim:
                  "-i even when the lander moves that way) and it falls with the area.  The "
                  "simulator's default is the physical -(1/2) rho C_D A_i |v_i| v_i / m "
                  "(lgw.sim.mars.parameters); the laws cancel a_m whatever its model (plant).",
-                 steps, scope="all-gains")
+                 steps, scope="all-gains",
+                 paper_expr=(sp.Eq(sp.Symbol("a_m,i"), a_m, evaluate=False),),
+                 derived_expr=(sp.Eq(sp.Symbol("a_m,i"), -sp.Symbol("rho") * sp.Symbol("C_D")
+                                     * Ai * sp.Abs(vi) * vi / (2 * m), evaluate=False),))
 
 
 @cache
@@ -1059,7 +1167,9 @@ def gain_set_claims(g) -> list[Claim]:
 
 def general_claims() -> list[Claim]:
     """Every claim of seed 000 that holds or fails whatever the valid gains, in report order."""
-    return [SP.lemma1(), SP.lemma2(), SP.exact_bound_claim(), SP.exact_time_claim(),
+    se = _settling_exprs()
+    return [SP.lemma1(), _with_exprs(SP.lemma2(), *se["lemma2"]),
+            _with_exprs(SP.exact_bound_claim(), *se["exact-bound"]), SP.exact_time_claim(),
             SP.theorem1(), plant_claim(), drag_claim(), mass_claim(), surface_claim(),
             v1dot_axis_claim(), v1dot_vector_claim(), t1_claim(), s2dot_claim(),
             s2dot24_claim(), v2dot_claim("printed"), v2dot_claim("corrected"),

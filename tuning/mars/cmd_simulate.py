@@ -280,6 +280,12 @@ def settings_used(res: BatchResult, *, method: str, reference: bool,
 @click.option("--json", "as_json", is_flag=True,
               help="print one JSON object (schema: docs/json.md)")
 @out_dir_option("summary.json, cases.json, cases.csv (--fig6: fig6.json)")
+@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
+              default=None, help="write figures (PNG) to DIR: one case: thrust against time "
+                                 "with the limit, s1-s2 phase portrait; a campaign: also the "
+                                 "trajectory overlays (first 300 cases re-flown with RK4) and "
+                                 "the final positions/velocities of every case; --fig6: "
+                                 "settling against s1x(0) beside the bounds")
 def command(gains_path: Path | None, law: str, dispersion: str | None,
             initial_states: Path | None, cases: int | None, seed: int, disturbance: str,
             dist_amplitude: float | None, thrust_max: float | None, limit: str, drag: str,
@@ -287,9 +293,10 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
             method: str, rtol: float, atol: float, max_step: float, eps: float | None,
             t_max: float, land_r: float, land_v: float, reference: bool,
             workers: int | None, scheduler: str | None, scheduler_timeout: float, fig6: bool,
-            as_json: bool, out: Path | None) -> None:
+            as_json: bool, out: Path | None, plot_dir: Path | None) -> None:
     """Simulate seed 000's closed loop (corrected law by default) and summarize the landings."""
     check_out_dir(out)
+    check_out_dir(plot_dir, "--plot")
     gains = resolve_gains(gains_path)
     if dist_amplitude is not None and disturbance == "none":
         raise ParameterError("--dist-amplitude", dist_amplitude, "needs --disturbance sin, "
@@ -310,6 +317,8 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
             click.echo(text)
         else:
             _print_fig6(res6, con)
+        if plot_dir is not None:
+            _plot_fig6(res6, plot_dir, as_json)
         return
     if dispersion is not None and initial_states is not None:
         raise ParameterError("--dispersion", dispersion, "cannot be combined with "
@@ -372,6 +381,27 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
         _print_summary(summ, con)
         _print_cases(select_cases(res, shown_cases(res)), len(res),
                      int(case_flags(res).sum()), con)
+    if plot_dir is not None:
+        _plot(gains, res, opts, (r0, v0, m0), plot_dir, as_json)
+
+
+def _plot(gains: Gains, res: Any, opts: dict[str, Any], states: tuple, plot_dir: Path,
+          quiet: bool) -> None:
+    from lgw.tuning.mars.figures import simulation_figures, write
+
+    paths = write(simulation_figures(gains, res, opts, states), plot_dir)
+    if not quiet:
+        click.echo("wrote " + ", ".join(str(p) for p in paths))
+
+
+def _plot_fig6(res6: dict[str, Any], plot_dir: Path, quiet: bool) -> None:
+    from lgw.tuning.figures import save_png
+    from lgw.tuning.mars.figures import settling_figure
+
+    path = save_png(settling_figure(res6, "Seed 000 Fig. 6: settling against s1x(0)"),
+                    plot_dir / "settling_fig6.png")
+    if not quiet:
+        click.echo(f"wrote {path}")
 
 
 CSV_COLS = ["case", "landed", "landing_time", "fuel", "time_saturated", "min_altitude",

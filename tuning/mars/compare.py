@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 from lgw.theory.mars.gains import Gains, load_gains
-from lgw.theory.mars.parameters import M0, R0, V0
+from lgw.theory.mars.parameters import M0, R0, THRUST_MAX_AXIS, V0
 from lgw.theory.report import Section
 
 # seed 000 Part 1, no disturbance: GPOPS optimum, guidance (25), STSMG (46)
@@ -190,36 +190,43 @@ def format_table(report: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+def figure_png(trajs: list[dict], amplitude: float) -> bytes:
+    """Altitude, horizontal distance and max_i |F_i| against time, per method and disturbance
+    (PNG bytes): the per-axis thrust limit of Part 3 drawn in the thrust panels, one legend
+    shared by every panel."""
+    from lgw.tuning.figures import limit_line, png_bytes, shared_legend, styled
+
+    with styled() as plt:
+        fig, ax = plt.subplots(2, 3, figsize=(14, 8.2), sharex="col")
+        labels = list(dict.fromkeys(tr["label"] for tr in trajs))
+        colors = {lab: f"C{i}" for i, lab in enumerate(labels)}
+        for row, dist in enumerate(("none", "sin")):
+            for tr in (x for x in trajs if x["disturbance"] == dist):
+                c, lab = colors[tr["label"]], tr["label"]
+                ax[row, 0].plot(tr["t"], tr["r"][:, 2], c, label=lab)
+                ax[row, 1].plot(tr["t"], np.linalg.norm(tr["r"][:, :2], axis=1), c, label=lab)
+                ax[row, 2].plot(tr["t"], np.abs(tr["F"]).max(axis=1) / 1e3, c, label=lab)
+            title = "no disturbance" if dist == "none" else f"a_p,i = {amplitude:g} sin t"
+            ax[row, 0].set_ylabel(f"{title}\naltitude r_z [m]")
+            ax[row, 0].axhline(0.0, color="k", lw=0.6)
+            # a crash below ground would squash the landings: clip the view (the table has it)
+            ax[row, 0].set_ylim(bottom=-0.15 * float(R0[2]))
+            ax[row, 1].set_ylabel("horizontal distance [m]")
+            ax[row, 2].set_ylabel("max_i |F_i| [kN]")
+            limit_line(ax[row, 2], THRUST_MAX_AXIS / 1e3,
+                       f"per-axis thrust limit {THRUST_MAX_AXIS / 1e3:g} kN (Part 3; these "
+                       "runs are unlimited)")
+        for a in ax[1]:
+            a.set_xlabel("t [s]")
+        shared_legend(fig, ax.ravel(), ncol=3)
+        fig.suptitle("Seed 000 Part 1: fuel-optimal (open loop) vs fixed-time vs super-twisting")
+        fig.tight_layout(rect=(0, 0.07, 1, 1))
+        return png_bytes(fig)
+
+
 def figure(trajs: list[dict], amplitude: float, path: Path) -> None:
-    """Altitude, horizontal distance and max_i |F_i| against time, per method and disturbance."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(2, 3, figsize=(14, 7.5), sharex="col")
-    labels = list(dict.fromkeys(tr["label"] for tr in trajs))
-    colors = {lab: f"C{i}" for i, lab in enumerate(labels)}
-    for row, dist in enumerate(("none", "sin")):
-        for tr in (x for x in trajs if x["disturbance"] == dist):
-            c, lab = colors[tr["label"]], tr["label"]
-            ax[row, 0].plot(tr["t"], tr["r"][:, 2], c, label=lab)
-            ax[row, 1].plot(tr["t"], np.linalg.norm(tr["r"][:, :2], axis=1), c, label=lab)
-            ax[row, 2].plot(tr["t"], np.abs(tr["F"]).max(axis=1) / 1e3, c, label=lab)
-        title = "no disturbance" if dist == "none" else f"a_p,i = {amplitude:g} sin t"
-        ax[row, 0].set_ylabel(f"{title}\naltitude r_z [m]")
-        ax[row, 0].axhline(0.0, color="k", lw=0.6)
-        # a crash below ground would squash the landings: clip the view, the table has the depth
-        ax[row, 0].set_ylim(bottom=-0.15 * float(R0[2]))
-        ax[row, 1].set_ylabel("horizontal distance [m]")
-        ax[row, 2].set_ylabel("max_i |F_i| [kN]")
-    for a in ax[1]:
-        a.set_xlabel("t [s]")
-    ax[0, 0].legend(fontsize=8)
-    fig.suptitle("Seed 000 Part 1: fuel-optimal (open loop) vs fixed-time vs super-twisting")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110, metadata={"Software": None})
-    plt.close(fig)
+    """``figure_png`` written to ``path``."""
+    path.write_bytes(figure_png(trajs, amplitude))
 
 
 def report_section(report: dict[str, Any], image: str | None) -> Section:
