@@ -20,6 +20,8 @@ from lgw.theory.report import (
     render_markdown,
     verdict_counts,
 )
+from lgw.tuning.io import atomic_write_text, atomic_writer, check_out_dir, make_out_dir
+from lgw.tuning.mars.gains_file import load_tuned
 from lgw.tuning.mars.options import resolve_gains
 from lgw.tuning.options import gains_option
 
@@ -54,7 +56,10 @@ def command(gains_path: Path | None, out_dir: Path | None, as_json: bool, with_c
     set, and write the report (--out) and/or print the claims as JSON (--json)."""
     if out_dir is None and not as_json:
         raise ParameterError("--out", None, "give --out DIR, --json, or both")
+    check_out_dir(out_dir)  # before any work
     g = resolve_gains(gains_path)  # validated before anything is written
+    for p in tuned_paths:
+        load_tuned(p)
     claims = all_claims(g)
     text = claims_json(claims)
     images: list[Figure] = []
@@ -89,11 +94,12 @@ def command(gains_path: Path | None, out_dir: Path | None, as_json: bool, with_c
                 "report.tex": render_latex(claims, spec, sections, coverage=cov),
                 "report.html": render_html(claims, spec, sections, coverage=cov),
                 "claims.json": text}
-        out_dir.mkdir(parents=True, exist_ok=True)
+        make_out_dir(out_dir)
         for name, doc in docs.items():
-            (out_dir / name).write_text(doc)
+            atomic_write_text(out_dir / name, doc)
         for fig in images:
-            (out_dir / fig.file).write_bytes(fig.png)
+            with atomic_writer(out_dir / fig.file, "wb") as f:
+                f.write(fig.png)
     if as_json:
         click.echo(text, nl=False)
         return
