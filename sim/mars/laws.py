@@ -35,7 +35,7 @@ from functools import cache
 import numba
 import numpy as np
 import sympy as sp
-from lgw.sim.codegen import lambdified_source
+from lgw.sim.codegen import lambdified_source, nb_sig, nb_sign
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars import mss as mss
 from lgw.theory.mars import supertwisting as st
@@ -94,20 +94,6 @@ def get_law(name: str) -> LawSpec:
     if name not in LAWS:
         raise ParameterError("law", name, f"must be one of {', '.join(LAWS)}")
     return LAWS[name]
-
-
-# --- numba building blocks the generated code calls ---------------------------------------
-
-@numba.njit(cache=True, error_model="numpy")
-def nb_sig(x: float, q: float) -> float:
-    """sig(x, q) = |x|^q sgn(x), as ``lgw.theory.symbolic.np_sig`` (0 at 0; NaN for q < 0 at 0)."""
-    s = 1.0 if x > 0 else (-1.0 if x < 0 else 0.0)
-    return s * abs(x) ** q
-
-
-@numba.njit(cache=True, error_model="numpy")
-def nb_sign(x: float) -> float:
-    return 1.0 if x > 0 else (-1.0 if x < 0 else 0.0)
 
 
 class _ln(sp.Function):  # noqa: N801  unevaluated log, so SymPy cannot fold exp(q ln x) back

@@ -1,20 +1,16 @@
 """Seed 001's report frame for the shared renderer ``lgw.theory.report``.
 
-The shared renderer reads the attributes of the older ``lgw.theory.claims.Claim`` (a verdict
-string, ``evidence`` text, steps with ``method`` and ``detail``).  ``render_view`` presents a
-computed-verdict ``lgw.theory.evidence.Claim`` in that shape without changing its verdict;
-drop it when the renderer takes evidence claims directly.
+The shared renderer takes the evidence claims directly; this module gives it seed 001's
+title, gain rows, bound labels, references and coverage table.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
-from lgw.theory.evidence import Claim
 from lgw.theory.lunar.coverage import COVERAGE
 from lgw.theory.lunar.gains import Gains
-from lgw.theory.report import ReportSpec, Section, fmt
+from lgw.theory.report import CoverageRow, ReportSpec, fmt
 
 REFERENCES = (
     "Seed 001: Adaptive backstepping for optimal descent with input saturation and failure "
@@ -39,51 +35,12 @@ BOUND_LABELS = (
 )
 
 
-@dataclass(frozen=True)
-class _StepView:
-    status: str
-    statement: str
-    method: str
-    detail: str
-
-
-@dataclass(frozen=True)
-class ClaimView:
-    id: str
-    equations: str
-    title: str
-    paper: str
-    derived: str
-    law: str | None
-    verdict: str
-    evidence: str
-    steps: tuple
-    remarks: tuple
-    counterexample: dict | None
-    numbers: dict
-
-
-def render_view(c: Claim) -> ClaimView:
-    def sv(s):
-        return _StepView(s.status, s.statement, s.evidence.kind, s.evidence.summary())
-
-    ce = c.counterexample
-    return ClaimView(c.id, c.equations, c.title, c.paper, c.derived, c.law, c.verdict,
-                     c.verdict_text() + f"; scope {c.scope}", tuple(sv(s) for s in c.steps),
-                     tuple(sv(s) for s in c.remarks), ce.to_dict() if ce else None,
-                     dict(c.numbers))
-
-
-def coverage_section(claims: list[Claim]) -> Section:
-    verdicts = {c.id: c.verdict for c in claims}
-    rows = []
-    for item, ids, note in COVERAGE:
-        judged = ", ".join(f"{i}: {verdicts.get(i, 'not run')}" for i in ids) if ids else \
-            "not checkable"
-        rows.append((item, judged, note))
-    return Section("Coverage of seed 001", columns=("item", "claims: verdict", "note"),
-                   rows=tuple(rows), paragraphs=("Every numbered equation, hypothesis, remark "
-                                                 "and simulation statement.",))
+def coverage_rows() -> tuple[CoverageRow, ...]:
+    """The coverage table of seed 001 (``lgw.theory.lunar.coverage.COVERAGE``) as the shared
+    renderer's rows: every numbered item with its claims, or why it is not checkable."""
+    return tuple(CoverageRow(item, "item", tuple(ids)) if ids else
+                 CoverageRow(item, "item", (), note.removeprefix("not checkable, because "))
+                 for item, ids, note in COVERAGE)
 
 
 def gain_rows(g: Gains) -> tuple[tuple[str, str], ...]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import click
+from lgw.tuning.io import atomic_write_text, check_out_dir, make_out_dir
 from lgw.tuning.lunar.options import resolve_gains
 from lgw.tuning.options import gains_option
 
@@ -18,30 +19,31 @@ from lgw.tuning.options import gains_option
                    "scenario claims, the measured L2 norms and the figure")
 def command(gains_path: Path | None, out_dir: Path, with_scenario: bool) -> None:
     """Derive and check every claim of seed 001 and write the report."""
+    check_out_dir(out_dir)  # before any work
     g = resolve_gains(gains_path)  # validated before anything is written
     from lgw.theory.lunar.claims import all_claims
-    from lgw.theory.lunar.report import coverage_section, render_view, report_spec
-    from lgw.theory.report import render_html, render_latex, render_markdown
+    from lgw.theory.lunar.report import coverage_rows, report_spec
+    from lgw.theory.report import claims_json, render_html, render_latex, render_markdown
     from lgw.tuning.lunar.report_sections import bounds_table, reference_section, run_scenario
 
     sections, scenario, figure = [reference_section()], [], None
     measured = None
     if with_scenario:
-        out_dir.mkdir(parents=True, exist_ok=True)
+        make_out_dir(out_dir)
         scenario, sec, measured = run_scenario(out_dir / "section5.png")
         sections.append(sec)
         figure = "section5.png"
     claims = all_claims(scenario)
-    sections.append(coverage_section(claims))
+    cov = coverage_rows()
     bounds, note = bounds_table(g, measured)
     spec = report_spec(g, bounds, note)
-    views = [render_view(c) for c in claims]
-    docs = {"report.md": render_markdown(views, spec, sections),
-            "report.tex": render_latex(views, spec, sections),
-            "report.html": render_html(views, spec, sections)}
-    out_dir.mkdir(parents=True, exist_ok=True)
+    docs = {"report.md": render_markdown(claims, spec, sections, coverage=cov),
+            "report.tex": render_latex(claims, spec, sections, coverage=cov),
+            "report.html": render_html(claims, spec, sections, coverage=cov, asset_dir=out_dir),
+            "claims.json": claims_json(claims)}
+    make_out_dir(out_dir)
     for name, text in docs.items():
-        (out_dir / name).write_text(text)
+        atomic_write_text(out_dir / name, text)
     counts: dict[str, int] = {}
     for c in claims:
         counts[c.verdict] = counts.get(c.verdict, 0) + 1
