@@ -12,11 +12,12 @@ def test_report_without_scenario(tmp_path):
     assert r.exit_code == 0, r.output
     md = (tmp_path / "report.md").read_text()
     for c in theory_claims():
-        assert f"| [{c.id}](#{c.id}) |" in md and f"**{c.verdict}**" in md
-    assert "## Coverage of seed 001" in md
+        assert f"[{c.id}](#claim-{c.id}) |" in md and f"**{c.verdict}**" in md
+    assert "## Coverage of the paper" in md
     assert md.count("\n| ") >= len(COVERAGE)
     assert (tmp_path / "report.tex").read_text().startswith("\\documentclass")
-    assert "<html>" in (tmp_path / "report.html").read_text()
+    assert "<html" in (tmp_path / "report.html").read_text()
+    assert (tmp_path / "claims.json").exists()
 
 
 def test_coverage_names_only_existing_claims():
