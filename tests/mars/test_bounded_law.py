@@ -100,6 +100,7 @@ def test_claims_have_verdicts():
     assert got["bounded-slide-time"] == "proved"
     assert got["bounded-fixed-time"] == "proved-given"
     assert got["bounded-invariants"] == "checked"
+    assert got["bounded-sat-invariance"] == "proved"
     for c in all_claims():
         for s in c.steps:
             if s.evidence.kind == "search":
