@@ -10,6 +10,8 @@
                                                bounded`` against today's corrected-law tuner, same
                                                run (ratio); then fresh Table III (500) and Table
                                                II (1000) campaigns with the tuned bounded gains
+  python benchmarks/bench_tune.py bounded-sat the saturated-cancellation variant (not certified):
+                                               the same campaigns at tf = 60 s, simulated only
   python benchmarks/bench_tune.py all
 
 Every number printed comes from ``lgw.tuning.mars.design`` and
@@ -167,20 +169,21 @@ def after_arrival_peaks(r, v, F, tol=(0.1, 0.1)) -> tuple[np.ndarray, np.ndarray
 
 
 def bounded_campaign(gains, tf: float, thrust: float, name: str, n: int, seed: int,
-                     dt: float = 0.02, chunk: int = 250) -> dict:
+                     dt: float = 0.02, chunk: int = 250, law: str = "bounded",
+                     extra: dict | None = None) -> dict:
     """A fresh campaign with the bounded law, simulated apart from the tuner (other states and
     seed, RK4 at dt = 0.02 s instead of the tuner's 0.05 s, trajectories recorded)."""
     from dataclasses import replace as _replace
 
     from lgw.sim.mars.batch import simulate_batch
     from lgw.theory.mars.gains import default_gains
-    g = _replace(default_gains(), extra={"bounded": gains.to_dict()})
+    g = _replace(default_gains(), extra={"bounded": gains.to_dict(), **(extra or {})})
     fn = table3_states if name == "table3" else table2_states
     r0, v0, m0 = fn(n, seed=seed)
     acc: dict[str, list] = {k: [] for k in ("lt", "landed", "peak", "sat", "alt", "after")}
     for a in range(0, n, chunk):
         sl = slice(a, min(a + chunk, n))
-        res = simulate_batch(r0[sl], v0[sl], m0[sl], g, law="bounded", thrust_limit=thrust,
+        res = simulate_batch(r0[sl], v0[sl], m0[sl], g, law=law, thrust_limit=thrust,
                              t_max=tf + 5.0, dt=dt, record=True, stop="t_max")
         tr = res.trajectory
         _, after = after_arrival_peaks(tr["r"], tr["v"], tr["F"])
@@ -253,9 +256,39 @@ def bench_bounded(tf: float = 60.0, thrust: float = 50_000.0, envelope: str = "t
     return out
 
 
+# Hand-picked (not tuned) gains for the saturated-cancellation variant: psi'(0) = c1/sqrt(delta)
+# = 1 /s, w0 = 5 m/s.
+SAT_GAINS = {"c1": 4.0, "delta": 16.0, "c2": 1e-9, "k1": 4.0, "k2": 1e-5, "p2": 1.5, "e1": 0.2,
+             "e2": 1.5}
+SAT_W0 = 5.0
+
+
+def bench_bounded_sat(tf: float = 60.0, thrust: float = 50_000.0, n3: int = 500,
+                      n2: int = 1000) -> dict:
+    """Issue 17, next step: ``lgw.theory.mars.bounded.law_bounded_sat`` (no proven time bound
+    yet, so not registered in lgw.sim.mars.laws) registered here for the run, flown on fresh
+    campaigns with hand-picked gains.  Every number is simulated."""
+    from lgw.sim.mars.laws import LawSpec, register_law
+    from lgw.theory.mars import bounded as B
+
+    def params(g):
+        return np.column_stack([B.bounded_from_extra(g.extra).params(),
+                                np.full(3, float(g.extra["w0"]))])
+    register_law(LawSpec("bounded-sat-experimental", B.law_bounded_sat, B.PARAMS_SAT, params,
+                         "bounded law with saturated cancellation (experiment)"))
+    bg = B.bounded_gains_from_dict(SAT_GAINS)
+    out = {"law": "bounded-sat-experimental", "gains": SAT_GAINS, "w0": SAT_W0}
+    for name, n in (("table3", n3), ("table2", n2)):
+        out[name] = bounded_campaign(bg, tf, thrust, name, n, BOUNDED_SEEDS[name],
+                                     law="bounded-sat-experimental", extra={"w0": SAT_W0})
+        print(json.dumps(out[name], indent=1, default=float), flush=True)
+    return out
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("time", "compare", "check", "bounded", "all"))
+    ap.add_argument("what", choices=("time", "compare", "check", "bounded", "bounded-sat",
+                                     "all"))
     ap.add_argument("--no-baseline", action="store_true", help="bounded: skip the corrected tuner")
     ap.add_argument("--envelope", default=None)
     ap.add_argument("--tf", type=float, nargs="*", default=None)
@@ -270,6 +303,8 @@ def main() -> None:
         bench_check()
     if args.what in ("bounded", "all"):
         bench_bounded(baseline=not args.no_baseline)
+    if args.what in ("bounded-sat", "all"):
+        bench_bounded_sat()
 
 
 if __name__ == "__main__":

@@ -100,6 +100,7 @@ def test_claims_have_verdicts():
     assert got["bounded-slide-time"] == "proved"
     assert got["bounded-fixed-time"] == "proved-given"
     assert got["bounded-invariants"] == "checked"
+    assert got["bounded-sat-invariance"] == "proved"
     for c in all_claims():
         for s in c.steps:
             if s.evidence.kind == "search":
@@ -153,3 +154,19 @@ def test_simulated_landing_within_proven_bound(us):
     for i in range(3):
         assert np.all(res.peak_thrust[:, i] <= cert[i]["F_b"])
     assert drag_force_coef().shape == (3,)
+
+
+def test_disturbed_landing_within_practical_bound():
+    """With |a_p,i| <= a_max (seed 000 (47)-type sinusoid, amplitude a_max) the cases land
+    inside the practical bound: |s| enters s_nb, the landing set is unchanged (rho <= 0.1 m)."""
+    bg, a_max = B.default_bounded(), 0.3
+    r0 = np.array([[b.r_lo for b in TABLE3_AXES], [b.r_hi for b in TABLE3_AXES]])
+    v0 = np.array([[b.v_lo for b in TABLE3_AXES], [b.v_hi for b in TABLE3_AXES]])
+    T = [B.axis_box_bounds(bg, i, b, a_max=a_max)["T_land"] for i, b in enumerate(TABLE3_AXES)]
+    T0 = [B.axis_box_bounds(bg, i, b)["T_land"] for i, b in enumerate(TABLE3_AXES)]
+    assert all(t > t0 for t, t0 in zip(T, T0, strict=True))  # the practical bound is slower
+    res = simulate_batch(r0, v0, np.full(2, M0), _gains(bg), law=NAME, disturbance="sin",
+                         dist_amplitude=a_max, thrust_limit=50_000.0, t_max=max(T) + 5)
+    assert res.landed.all() and np.all(res.landing_time <= max(T))
+    with pytest.raises(ParameterError):  # a disturbance whose neighbourhood leaves the set
+        B.axis_box_bounds(bg, 0, TABLE3_AXES[0], a_max=3.0)

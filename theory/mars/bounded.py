@@ -354,3 +354,28 @@ def thrust_bound(bg: BoundedGains, i: int, box: AxisBox, m_max: float, grav_i: f
     the density factor on r_z >= -0.1 m); m <= m_max because the mass only decreases (13)."""
     d = axis_box_bounds(bg, i, box, **kw)
     return float(m_max * (abs(grav_i) + d["u_b"]) + drag_force_coef * d["V_b"] ** 2)
+
+
+# --- a variant not yet certified: saturated cancellation (issue 17, next step) -------------
+w0 = sp.Symbol("w_0", positive=True)  # m/s, the speed margin of the saturation
+PARAMS_SAT = PARAMS + (w0,)
+
+
+def sat_limit() -> sp.Expr:
+    """W(r) = psi(|r|) + w0: the speed up to which psi'(r) v is cancelled exactly."""
+    return psi().subs(r, sp.Abs(r)) + w0
+
+
+def law_bounded_sat() -> sp.Expr:
+    """a = -g - a_m - psi'(r) sat(v, W(r)) - k1 sig(s,e1) - k2 sig(s,e2), sat(v, W) =
+    max(-W, min(W, v)).
+
+    Where |v| <= W(r) it is ``law_bounded`` (s' = -k(s) + a_p exactly); outside, the
+    cancellation is capped at psi'(r) W(r), which removes the psi'(r)|v| term that limits
+    psi'(0) (and so the terminal rate) for ``law_bounded``.  Proven here (claim
+    ``bounded-sat-invariance``): {|v| <= W(r)} is forward invariant when k(w0) > a_max, and
+    outside it |v| decreases at a rate >= k(w0) - a_max.  Not yet derived: a time and command
+    bound over a box that is tight enough to tune with (the crude one goes through
+    R0 + V0 T_out); so it is not registered as a law and has no tuner."""
+    W = sat_limit()
+    return -grav - am - dpsi() * sp.Max(-W, sp.Min(W, v)) + reaching(surface())

@@ -270,4 +270,34 @@ def claim_fixed_time() -> Claim:
 @cache
 def all_claims() -> tuple[Claim, ...]:
     return (claim_derivative(), claim_finite(), claim_psi_monotone(), claim_slide_time(),
-            claim_invariants(), claim_fixed_time())
+            claim_invariants(), claim_fixed_time(), claim_sat_invariance())
+
+
+def claim_sat_invariance() -> Claim:
+    """For ``law_bounded_sat``: on the boundary |v| = W(r) of Omega_in = {|v| <= W(r)},
+    d/dt (|v| - W(r)) < 0 (no disturbance), so Omega_in is forward invariant; inside it the law
+    is ``law_bounded``.  Computed on the branch v > 0 (the law is odd in (r, v)) for r > 0
+    (moving away) and r < 0 (moving toward): Z' = -2 psi' W - k(|s|) and Z' = -k(w0)."""
+    Wx = B.psi().subs(r, X) + B.w0  # W at |r| = x
+    steps = []
+    for sgn_r in (1, -1):
+        rr = sgn_r * X
+        Wv = Wx
+        s_b = Wv + B.psi().subs(r, rr)  # s on the boundary v = W
+        vdot = (-B.dpsi().subs(r, rr) * Wv + B.reaching(s_b))  # sat(v) = W there
+        zdot = vdot - sp.diff(Wx, X) * sgn_r * Wv  # d|r|/dt = sgn(r) v = sgn_r W
+        zdot = sp.simplify(sp.powsimp(on_branch(zdot, {})[0], force=True))
+        if sgn_r > 0:
+            target = (-2 * B.dpsi().subs(r, X) * Wv - B.k1 * sig(s_b, B.e1)
+                      - B.k2 * sig(s_b, B.e2))
+            steps.append(prove_identity(zdot - target, "r > 0, v = W (away): Z' = -2 psi' W - "
+                                        "k1 sig(s,e1) - k2 sig(s,e2)"))
+            steps.append(prove_nonneg(-target, "... < 0 (s = 2 psi(x) + w0 > 0)", strict=True))
+        else:
+            steps.append(prove_identity(sp.simplify(s_b - B.w0), "r < 0, v = W (toward): s = w0"))
+            target = -B.k1 * B.w0 ** B.e1 - B.k2 * B.w0 ** B.e2
+            steps.append(prove_identity(zdot - target, "... and Z' = -k1 w0^e1 - k2 w0^e2 < 0"))
+    return Claim("bounded-sat-invariance", "issue 17", "Saturated variant: the exact-cancellation "
+                 "region is forward invariant", "(not in seed 000)", "d(|v| - W(r))/dt < 0 on "
+                 "|v| = W(r): once |v| <= psi(|r|) + w0 the variant is the bounded law", steps,
+                 law=LAW)
