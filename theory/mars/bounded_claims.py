@@ -12,11 +12,10 @@ from functools import cache
 
 import numpy as np
 import sympy as sp
-import z3
-from lgw.theory.evidence import Cited, Claim, Inequality, Search, Step
+from lgw.theory.evidence import Cited, Claim, Search, Step
 from lgw.theory.mars import bounded as B
 from lgw.theory.mars.mss import am, ap, grav, r, v
-from lgw.theory.provers import prove_identity, prove_nonneg
+from lgw.theory.provers import prove_identity, prove_nonneg, prove_z3
 from lgw.theory.symbolic import LAMBDIFY_MODULES, on_branch, sig
 
 X = sp.Symbol("x", positive=True)  # |r| on a branch
@@ -142,13 +141,11 @@ def claim_invariants() -> Claim:
                           "V' = -(k1|s|^(e1+1) + k2|s|^(e2+1)) <= 0 without disturbance: |s| "
                           "is nonincreasing")]
     # sign lemma: |v| > P >= |psi(r)| implies s v > 0 (s = v + psi), by z3 on reals
-    vv, pp, PP = z3.Reals("v psi P")
-    sol = z3.Solver()
-    sol.add(z3.Abs(pp) <= PP, z3.Abs(vv) > PP, (vv + pp) * vv <= 0)
-    ans = str(sol.check())
-    steps.append(Step("|v| > P >= |psi(r)| implies s v > 0, so d|v|/dt = -psi'|v| - k(|s|) "
-                      "(+ a_p sgn v) < 0 there: |v| <= max(|v0|, psi(R_b) + s_nb)",
-                      Inequality(sp.Symbol("s") * v, "z3", answer=ans, strict=True)))
+    vv, pp, PP = sp.symbols("v psi P", real=True)
+    steps.append(prove_z3(sp.StrictGreaterThan((vv + pp) * vv, 0),
+                          [sp.Abs(pp) <= PP, sp.Abs(vv) > PP],
+                          "|v| > P >= |psi(r)| implies s v > 0, so d|v|/dt = -psi'|v| - k(|s|) "
+                          "(+ a_p sgn v) < 0 there: |v| <= max(|v0|, psi(R_b) + s_nb)"))
     steps += _branches(sp.sign(r) * (B.surface() - B.psi()) - sp.sign(r) * v, r,
                        "d|r|/dt = sgn(r) v = sgn(r) s - psi(|r|) (psi odd)")
     steps.append(Step("so |r| <= max(|r0|, psi^(-1)(S_b)) and the time bounds follow",

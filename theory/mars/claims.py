@@ -1182,5 +1182,10 @@ def general_claims() -> list[Claim]:
 
 
 def all_claims(gains=None) -> list[Claim]:
-    """Every claim of seed 000 in report order; with a gain set, also the claims judged for it."""
-    return general_claims() + (gain_set_claims(gains) if gains is not None else [])
+    """Every claim of seed 000 in report order, then the workbench's own bounded law (issue 17,
+    ``lgw.theory.mars.bounded_claims``: beyond the paper); with a gain set, also the claims
+    judged for it."""
+    from lgw.theory.mars import bounded_claims
+
+    return (general_claims() + list(bounded_claims.all_claims())
+            + (gain_set_claims(gains) if gains is not None else []))
