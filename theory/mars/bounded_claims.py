@@ -68,7 +68,7 @@ def claim_finite() -> Claim:
                 steps.append(prove_nonneg((ex).subs(B.p2, 1 + sp.Symbol("eps", positive=True)),
                                           f"exponent {sp.sstr(ex)} >= 0 on {sp.sstr(base)} "
                                           "(p2 > 1)"))
-    for f in law.atoms(sig):
+    for f in sorted(law.atoms(sig), key=sp.default_sort_key):
         steps.append(prove_nonneg(f.args[1], f"sig(., {sp.sstr(f.args[1])}) has a positive "
                                   "exponent: continuous, 0 at 0", strict=True))
     return Claim("bounded-command-finite", "issue 17", "The bounded law's command is finite and "
