@@ -125,8 +125,9 @@ def test_numeric_options_say_their_unit_or_range():
 
 
 def test_one_name_for_the_disturbance_amplitude():
-    sim = {o for p in dict((v, c) for v, _, c in COMMANDS)["simulate"].params for o in p.opts}
-    cmp_cmd = dict((v, c) for v, _, c in COMMANDS)["compare"]
+    mars = {v: c for v, s, c in COMMANDS if s == "mars"}
+    sim = {o for p in mars["simulate"].params for o in p.opts}
+    cmp_cmd = mars["compare"]
     visible = {o for p in cmp_cmd.params if not getattr(p, "hidden", False) for o in p.opts}
     assert "--dist-amplitude" in sim and "--dist-amplitude" in visible
     assert "--amplitude" not in visible  # kept only as a hidden deprecated alias

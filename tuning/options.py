@@ -129,8 +129,8 @@ SEED = Integer(0, SEED_MAX, "a numpy SeedSequence seed")
 def gains_option(f):
     return click.option("--gains", "gains_path",
                         type=click.Path(dir_okay=False, path_type=Path), default=None,
-                        help="gains TOML file ([gains], optional [disturbance]; UTF-8) "
-                             "[default: the built-in gain set, lgw.theory.mars.parameters]")(f)
+                        help="gains TOML file (UTF-8; the keys of the system, see its docs) "
+                             "[default: the system's built-in gain set]")(f)
 
 
 def seed_option(help_text: str = "random seed (numpy SeedSequence)"):
