@@ -34,3 +34,36 @@ def counts(code: np.ndarray) -> dict[str, int]:
 
 def names(code: np.ndarray) -> list[str]:
     return [OUTCOMES[int(k)] for k in np.asarray(code)]
+
+
+def json_safe(x):
+    """x with every non-finite float replaced by None (JSON has no NaN / inf), recursively;
+    numpy scalars and arrays become Python numbers and lists."""
+    if isinstance(x, dict):
+        return {str(k): json_safe(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [json_safe(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return json_safe(x.tolist())
+    if isinstance(x, np.bool_ | bool):
+        return bool(x)
+    if isinstance(x, np.integer):
+        return int(x)
+    if isinstance(x, float | np.floating):
+        return float(x) if np.isfinite(x) else None
+    return x
+
+
+def case_record(results: dict, i: int) -> dict:
+    """Case i of a kernel run's per-case results (``BatchResult.cases``) as a JSON-ready dict:
+    its one outcome and time, and the sampled quantities (None where undefined, e.g. no
+    saturation entry)."""
+    from lgw.sim.lunar.kernel import RESULT_FIELDS
+
+    rec = {"outcome": OUTCOMES[int(results["outcome"][i])],
+           "t_outcome_s": float(results["t_outcome"][i])}
+    for k in RESULT_FIELDS[2:]:
+        rec[k] = results[k][i]
+    rec["mass_final_kg"] = results["y_end"][i, 6]
+    rec["steps"] = results["steps"][i]
+    return json_safe(rec)
