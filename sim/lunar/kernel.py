@@ -489,6 +489,14 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
     hmin = _herm_min(y[0], k1[0], yn[0], k1n[0], h, min(th, 1.0)) - R_MOON  # noqa: F821
     S[HMIN] = min(S[HMIN], hmin)  # noqa: F821
     if code != COMPLETED:  # noqa: F821
+        for j in range(NY):  # noqa: F821
+            if not math.isfinite(k1n[j]):
+                # y' at the new node is NaN / inf: the interpolant that would locate the event
+                # is meaningless (found by tests/lunar/test_outcomes.py: a body rate of 1e12
+                # rad/s gave "surface contact" at 4e-20 s with a NaN state)
+                S[OUT] = NONFINITE  # noqa: F821
+                S[TOUT] = t  # noqa: F821
+                return STOP_AT_NODE, 1.0  # noqa: F821
         _node_metrics_fn(t, XL, X, S, C, Q, th, h)  # noqa: F821
         S[OUT] = code  # noqa: F821
         S[TOUT] = t + th * h  # noqa: F821
