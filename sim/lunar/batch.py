@@ -1,13 +1,16 @@
 """Batched simulation of seed 001's closed loop, and a tight ``solve_ivp`` reference.
 
-STAND-IN: ``rk4_batch`` is a compact numpy-vectorised fixed-step RK4 over all cases, written
-here until the shared numba integrator ``lgw.sim.integrate`` is available; replace it by that
-integrator (the vector field ``closed_loop.field`` and the records stay).
+``rk4_batch`` (and ``simulate`` with dopri5) runs the compiled kernel ``lgw.sim.lunar.kernel`` on
+the shared integrator ``lgw.sim.integrate``: the law generated from the SymPy expressions, the
+plant and actuators of ``closed_loop.field`` in scalar form, in parallel over cases.
+``rk4_numpy`` is the earlier numpy-vectorised fixed-step RK4 of ``closed_loop.field`` itself; it
+is kept as the independent route the tests and the benchmark compare the kernel against.
 
 Records per case: tracking errors, thrust and torque, time saturated, d0e, V2 and Vlambda along
-the run, failure time, saturation entries/exits.  A case that leaves the model's domain
-(non-finite state, quaternion norm drift above ``QUAT_NORM_TOL``, r below the lunar surface)
-is flagged with the time and reason and frozen from then on, never dropped.
+the run, failure time, saturation entries/exits, and one outcome with its time
+(``lgw.sim.lunar.outcomes``).  A case that leaves the model's domain (non-finite state,
+quaternion norm drift above ``QUAT_NORM_TOL``, r below the lunar surface, mass at the dry mass)
+stops there with that outcome; its records are frozen at its last accepted node, never dropped.
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ class BatchResult:
     out: dict  # name -> (K, ...) signals at the record times
     flagged: list = field(default_factory=list)  # (case, time, reason)
     dt: float = 0.0
+    cases: dict = field(default_factory=dict)  # per-case results of the kernel (N,) arrays
 
     @property
     def n_cases(self) -> int:
@@ -45,8 +49,9 @@ def _domain_check(t, X, alive, flagged):
             alive[i] = False
 
 
-def rk4_batch(ctx: Context, X0: np.ndarray, record_every: int = 5) -> BatchResult:
-    """Fixed-step RK4 (step ``ctx.opts.dt``) of all cases together on [0, t_end]."""
+def rk4_numpy(ctx: Context, X0: np.ndarray, record_every: int = 5) -> BatchResult:
+    """Fixed-step numpy RK4 (step ``ctx.opts.dt``) of ``closed_loop.field``, all cases in one
+    array, on [0, t_end]: the cross-check of the compiled kernel."""
     o = ctx.opts
     t_end = ctx.tf if o.t_end is None else o.t_end
     n = int(round(t_end / o.dt))
@@ -77,6 +82,116 @@ def rk4_batch(ctx: Context, X0: np.ndarray, record_every: int = 5) -> BatchResul
     rec(n * h)
     out = {k: np.array([o_[k] for o_ in outs]) for k in outs[0]}
     return BatchResult(np.array(ts), np.array(Xs), out, flagged, h)
+
+
+def _kernel_inputs(ctx: Context, X0: np.ndarray) -> tuple[tuple, tuple]:
+    """(C, Q) of the kernel (lgw.sim.lunar.kernel) for the context and initial states."""
+    o = ctx.opts
+    ref = ctx.ref
+    n = X0.shape[1]
+
+    def mats(g, k):
+        return np.ascontiguousarray(np.moveaxis(np.broadcast_to(g[k], (3, 3, n)), -1, 0),
+                                    dtype=float)
+
+    def vecs(g, k):
+        return np.ascontiguousarray(np.broadcast_to(g[k], (n,)), dtype=float)
+
+    C = (np.ascontiguousarray(X0.T, dtype=float), mats(ctx.go, "K1"), mats(ctx.go, "F2"),
+         vecs(ctx.go, "f3"), vecs(ctx.go, "q"), mats(ctx.ga, "K1"), mats(ctx.ga, "F2"),
+         vecs(ctx.ga, "f3"), vecs(ctx.ga, "q"))
+    if o.failure == "atan":
+        tc = ref.tf if o.t_fail is None else 2.0 * o.t_fail
+    else:
+        tc = ref.tf / 2 if o.t_fail is None else o.t_fail
+    sx, sc = ref.spline
+    Q = (sx, sc, float(ref.a1), float(ref.a2), float(ref.a3), float(ref.tf),
+         float(o.thrust_max), float(o.torque_max), SAT_CODE[o.sat_reading],
+         FAILURE_CODE[o.failure], float(o.Ta), float(tc), float(o.dist_amp), float(o.cmd_wn),
+         POINTING_CODE[o.thrust_pointing], np.ascontiguousarray(ctx.J[:, 0], dtype=float),
+         float(o.m_dry), float(P.QUAT_NORM_TOL))
+    return C, Q
+
+
+SAT_CODE = {"commanded": 0, "nominal": 1}
+FAILURE_CODE = {"atan": 0, "step": 1, "none": 2}
+POINTING_CODE = {"coupled": 0, "ideal": 1}
+
+
+def simulate(ctx: Context, X0: np.ndarray, *, method: str = "rk4", record: bool = True,
+             record_every: int = 5, rtol: float = 1e-6, atol: float = 1e-6,
+             max_step: float = 1.0, max_steps: int = 200_000, parallel: bool = True,
+             chunk: int = 1024) -> BatchResult:
+    """All cases of X0 (30, N) on the compiled kernel, RK4 at ``ctx.opts.dt`` (adjusted so that
+    an integer number of steps ends exactly at t_end, as ``rk4_numpy``) or dopri5 (rtol, atol,
+    max_step s, max_steps attempts).  record (RK4 only): the states and signals at every
+    ``record_every``-th node (and the last), as ``BatchResult.X`` / ``out``."""
+    from lgw.sim import executors, integrate
+    from lgw.sim.kernel_cache import CompileNotice
+    from lgw.sim.lunar import kernel as K
+    from lgw.sim.lunar.outcomes import OUTCOMES
+    from lgw.sim.options import IntegrationOptions
+
+    o = ctx.opts
+    t_end = ctx.tf if o.t_end is None else o.t_end
+    nst = max(1, int(round(t_end / o.dt)))
+    h = t_end / nst
+    record = bool(record) and method == "rk4"
+    opt = IntegrationOptions(method=method, dt=h, rtol=rtol, atol=atol, max_step=max_step,
+                             max_steps=max_steps, record=record)
+    O = integrate.integration_tuple(opt, t_end)
+    n = X0.shape[1]
+    C, Q = _kernel_inputs(ctx, X0)
+    R = tuple(np.zeros(n, np.int64) if k in ("outcome", "sat_entries") else np.full(n, np.nan)
+              for k in K.RESULT_FIELDS)
+    G = tuple(integrate.generic_outputs(n, K.NY)[k] for k in integrate.GENERIC_FIELDS)
+    shape = (n, O[2] + 1) if record else (1, 1)
+    rec_y = np.full((*shape, K.NY), np.nan)
+    rec_x = np.full((*shape, K.NX), np.nan)
+    mod = K.kernel_module()
+    fn = mod.kernel_parallel if parallel else mod.kernel_serial
+    with CompileNotice(fn, "the lunar kernel", "~1-2 min"):
+        executors.run_local(lambda sl: integrate.run_chunk(fn, sl, C, Q, R, O, G, rec_y, rec_x),
+                            n, chunk)
+    res = dict(zip(K.RESULT_FIELDS, R, strict=True))
+    res.update(zip(integrate.GENERIC_FIELDS, G, strict=True))
+    code = res["outcome"].copy()
+    code[res["step_limit"]] = K.STEPLIM
+    code[res["nonfinite"]] = K.NONFINITE
+    res["outcome"] = code
+    res["t_outcome"] = np.where(res["nonfinite"] | res["step_limit"], res["t_end"],
+                                res["t_outcome"])
+    flagged = [(int(i), float(res["t_outcome"][i]), OUTCOMES[code[i]])
+               for i in np.flatnonzero(code != K.COMPLETED)]
+    if not record:
+        return BatchResult(np.array([0.0, t_end]), np.stack([X0, res["y_end"].T]), {}, flagged,
+                           h, res)
+    steps = res["steps"]
+    for i in range(n):  # a stopped case is frozen at its last accepted node
+        rec_y[i, steps[i] + 1:] = rec_y[i, steps[i]]
+        rec_x[i, steps[i] + 1:] = rec_x[i, steps[i]]
+    idx = np.arange(0, O[2] + 1, max(1, int(record_every)))
+    if idx[-1] != O[2]:
+        idx = np.append(idx, O[2])
+    Xr = np.moveaxis(rec_y[:, idx], 0, -1)  # (K, 30, N)
+    xr = np.moveaxis(rec_x[:, idx], 0, -1)  # (K, NX, N)
+    out = {}
+    for name, (a, size) in K.AUX.items():
+        out[name] = xr[:, a] if size == 1 else xr[:, a:a + size]
+    for name in ("orbit_saturated", "torque_saturated"):
+        out[name] = out[name] != 0.0
+    out["d0e_orbit"], out["d0e_attitude"] = Xr[:, 11], Xr[:, 25]
+    out["lam1o"], out["lam2o"] = Xr[:, 7], Xr[:, 8:11]
+    out["lam1a"], out["lam2a"] = Xr[:, 19:22], Xr[:, 22:25]
+    out["Vlam_o"] = 0.5 * (Xr[:, 7] ** 2 + np.sum(Xr[:, 8:11] ** 2, axis=1))
+    out["Vlam_a"] = 0.5 * (np.sum(Xr[:, 19:22] ** 2, axis=1) + np.sum(Xr[:, 22:25] ** 2, axis=1))
+    return BatchResult(idx * h, Xr, out, flagged, h, res)
+
+
+def rk4_batch(ctx: Context, X0: np.ndarray, record_every: int = 5) -> BatchResult:
+    """Fixed-step RK4 (step ``ctx.opts.dt``) of all cases on [0, t_end], compiled
+    (``simulate``)."""
+    return simulate(ctx, X0, record_every=record_every)
 
 
 def solve_ivp_case(ctx: Context, x0: np.ndarray, t_eval: np.ndarray, rtol: float = 1e-10,

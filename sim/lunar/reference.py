@@ -47,6 +47,10 @@ class Reference:
     sol: object  # solve_bvp's dense solution in tau = t / tf
     bvp_max_residual: float
     shooting: dict  # the single-shooting solution used as the initial guess (cross-check)
+    # the same dense solution as piecewise-cubic coefficients of [r, u, v, w, m] in tau (SI
+    # units): breakpoints (M + 1,), coefficients (4, M, 5), highest power first (scipy PPoly),
+    # for the compiled simulator (lgw.sim.lunar.kernel), which evaluates it exactly as ``sol``
+    spline: tuple = ()
 
     def state(self, t) -> np.ndarray:
         """[r, u, v, w, m] at times t (s), clipped to [0, tf]; shape (5, *t.shape)."""
@@ -116,8 +120,11 @@ def reference(tol: float = 1e-6) -> Reference:
     def sol(tau):
         return scaled(tau) * SCALE + off
 
+    c = scaled.c * SCALE[:, 0]  # (4, M, 5)
+    c[-1] += off[:, 0]  # the constant terms carry the offset
     return Reference(a1, a2, a3, tf, sol, float(np.max(res.rms_residuals)),
-                     {"a2": float(a2), "a3": float(a3), "tf": float(tf0)})
+                     {"a2": float(a2), "a3": float(a3), "tf": float(tf0)},
+                     (np.array(scaled.x, float), np.ascontiguousarray(c)))
 
 
 def open_loop_full_model(ref: Reference) -> dict:

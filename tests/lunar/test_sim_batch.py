@@ -1,4 +1,6 @@
-"""The batched RK4 stand-in against a tight solve_ivp (DOP853, rtol = atol = 1e-9).
+"""The compiled batched RK4 (``lgw.sim.lunar.batch.rk4_batch`` on ``lgw.sim.integrate``) against a
+tight solve_ivp (DOP853, rtol = atol = 1e-9) and against the numpy RK4 of the same field
+(``rk4_numpy``: same steps, so they agree to rounding: 1e-9 relative).
 
 Stated tolerances (RK4 at dt = 0.05 s; the loop has saturations and the sign-like adaptive
 term, so the observed order is below 4): position 1e-2 m, velocity 2e-2 m/s, quaternion 1e-3,
@@ -6,12 +8,14 @@ rate 5e-3 rad/s, virtual states 2e-2, d0e 1e-3; and halving dt must reduce the e
 
 import numpy as np
 import pytest
-from lgw.sim.lunar.batch import rk4_batch, solve_ivp_case
-from lgw.sim.lunar.closed_loop import RunOptions, initial_state, make_context
+from lgw.sim.lunar.batch import rk4_batch, rk4_numpy, simulate, solve_ivp_case
+from lgw.sim.lunar.closed_loop import RunOptions, field, initial_state, make_context
 from lgw.sim.lunar.reference import reference
 from lgw.sim.lunar.scenario import section5_case
+from lgw.theory.lunar import parameters as P
 from lgw.theory.lunar.gains import paper_gains
 from lgw.tuning.lunar.cmd_simulate import random_cases
+from scipy.integrate import solve_ivp
 
 TOL = {"r": (slice(0, 1), 1e-2), "V": (slice(3, 6), 2e-2), "Q": (slice(12, 16), 1e-3),
        "w": (slice(16, 19), 5e-3), "lam": (slice(7, 11), 2e-2), "d0e": ([11, 25], 1e-3)}
@@ -60,8 +64,68 @@ def test_case_below_the_surface_is_flagged_not_dropped():
                        [g] * 2)
     res = rk4_batch(ctx, X0)
     assert res.n_cases == 2
-    assert [f[0] for f in res.flagged] == [1]
-    assert res.flagged[0][2] == "r below the lunar surface"
+    assert res.flagged == [(1, 0.0, "surface_contact")]
+    assert list(res.cases["outcome"]) == [0, 1]
+    assert np.all(np.isfinite(res.X))  # frozen at t = 0, not dropped, no NaN
+
+
+def test_surface_contact_is_located_inside_the_step():
+    # 200 m above the surface, falling at 100 m/s: contact near t = 2 s, located between nodes
+    g = paper_gains()
+    ref = reference()
+    ctx = make_context(ref, [g], RunOptions(t_end=5.0, dt=0.05))
+    X0 = initial_state(ref, np.array([-15_000.0 + 200.0]), np.array([[0.0], [0.0], [0.0]]),
+                       np.array([[1.0], [0], [0], [0]]), np.zeros((3, 1)), [g])
+    X0[5] = 100.0  # w: r' = -w
+    res = simulate(ctx, X0, record=False)
+    assert res.flagged and res.flagged[0][2] == "surface_contact"
+    t_c = res.flagged[0][1]
+    ev = lambda t, x: x[0] - P.R_MOON  # noqa: E731
+    ev.terminal = True
+    s = solve_ivp(lambda t, x: field(t, x[:, None], ctx)[:, 0], (0, 5.0), X0[:, 0],
+                  method="DOP853", rtol=1e-10, atol=1e-10, events=ev)
+    # located on the Hermite interpolant (O(h^4)), not at the next node (0.05 s grid)
+    assert abs(t_c - s.t_events[0][0]) < 1e-4, (t_c, s.t_events[0])
+
+
+@pytest.mark.parametrize("case", ["section5", "random"])
+def test_compiled_against_numpy_rk4(case):
+    g = paper_gains()
+    ref = reference()
+    opts = RunOptions(t_end=3.0)
+    if case == "section5":
+        ctx, X0 = section5_case(opts=opts)
+    else:
+        n = 4
+        dh, dv, Q0 = random_cases(n, seed=11)
+        ctx = make_context(ref, [g] * n, opts)
+        X0 = initial_state(ref, dh, dv, Q0, np.zeros((3, n)), [g] * n)
+    a = rk4_batch(ctx, X0, record_every=6)
+    b = rk4_numpy(ctx, X0, record_every=6)
+    np.testing.assert_array_equal(a.t, b.t)
+    scale = np.maximum(np.abs(b.X).max(axis=(0, 2), keepdims=True), 1.0)
+    assert np.max(np.abs(a.X - b.X) / scale) < 1e-9
+    for k in ("eh", "ev", "thrust", "thrust_cmd", "torque", "torque_cmd", "d_orbit", "eq", "ew",
+              "z2o", "z2a", "V2o_part", "V2a_part", "B0du_o", "B0du_a", "d0e_orbit",
+              "d0e_attitude", "Vlam_o", "Vlam_a"):
+        s = max(float(np.max(np.abs(b.out[k]))), 1.0)
+        assert np.max(np.abs(np.asarray(a.out[k], float) - np.asarray(b.out[k], float))) / s \
+            < 1e-9, k
+    np.testing.assert_array_equal(a.out["orbit_saturated"], b.out["orbit_saturated"])
+
+
+def test_per_case_results_match_the_records():
+    ctx, X0 = section5_case(opts=RunOptions(t_end=6.0))
+    res = rk4_batch(ctx, X0, record_every=1)
+    c = res.cases
+    o = res.out
+    assert c["peak_thrust"][0] == pytest.approx(np.max(o["thrust"][:-1, 0]), rel=1e-12)
+    assert c["peak_torque"][0] == pytest.approx(np.max(np.abs(o["torque"][:-1, :, 0])),
+                                                rel=1e-12)
+    sat = o["torque_saturated"][:-1, 0]
+    assert c["time_saturated_torque"][0] == pytest.approx(np.sum(sat) * res.dt, abs=1e-9)
+    assert c["V2a_part_max"][0] == pytest.approx(np.max(o["V2a_part"][:-1, 0]), rel=1e-12)
+    assert c["outcome"][0] == 0 and c["t_outcome"][0] == pytest.approx(6.0)
 
 
 @pytest.mark.slow

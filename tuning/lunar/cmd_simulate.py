@@ -89,10 +89,16 @@ def command(gains_path, cases, seed, pointing, failure, t_fail, ta, sat_reading,
     ctx = make_context(ref, [g] * n, opts)
     X0 = initial_state(ref, dh, dv, Q0, np.zeros((3, n)), [g] * n)
     res = rk4_batch(ctx, X0, record_every=max(1, int(round(0.1 / opts.dt))))
-    sums = [summarize(res, ctx, i).numbers for i in range(n)]
+    from lgw.sim.lunar.outcomes import case_record, counts, json_safe
+
+    sums = [json_safe({**summarize(res, ctx, i).numbers, **case_record(res.cases, i)})
+            for i in range(n)]
     if as_json:
-        click.echo(json.dumps({"options": opts.__dict__, "reference": ref.to_dict(),
-                               "cases": sums}, indent=2, default=str))
+        # strict JSON: undefined numbers (no saturation entry, ...) are null, never NaN
+        click.echo(json.dumps(json_safe({"options": opts.__dict__, "reference": ref.to_dict(),
+                                         "outcomes": counts(res.cases["outcome"]),
+                                         "cases": sums}), indent=2, default=str,
+                              allow_nan=False))
     else:
         click.echo(f"reference: t_f = {ref.tf:.3f} s, a1 = {ref.a1:.6g}, a2 = {ref.a2:.6g} 1/s, "
                    f"a3 = {ref.a3:.6g}; RK4 dt = {opts.dt} s, pointing {pointing}")
@@ -103,12 +109,13 @@ def command(gains_path, cases, seed, pointing, failure, t_fail, ta, sat_reading,
                        f" s ({s['orbit_saturated_after_failure_s']:.4g} s after the failure), "
                        f"torque saturated {s['torque_saturated_s']:.4g} s, d0e = "
                        f"{s['d0e_orbit_final']:.4g} / {s['d0e_attitude_final']:.4g}, "
-                       f"flagged {s['flagged'] or 'no'}")
+                       f"outcome {s['outcome']} at {s['t_outcome_s']:.4g} s")
+        click.echo(f"outcomes: {counts(res.cases['outcome'])}")
     if out_dir is not None:
         from lgw.tuning.lunar.figures import section5_figure
 
         out_dir.mkdir(parents=True, exist_ok=True)
         (out_dir / "summary.json").write_text(json.dumps({"cases": sums}, indent=2,
-                                                         default=str))
+                                                         default=str, allow_nan=False))
         section5_figure(res, out_dir / "section5.png")
         click.echo(f"wrote {out_dir / 'summary.json'}, {out_dir / 'section5.png'}")

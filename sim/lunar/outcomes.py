@@ -1,0 +1,69 @@
+"""Seed 001's per-case outcomes: every case ends in exactly one, with its time.
+
+The kernel (``lgw.sim.lunar.kernel``) stops a case at the first of these and records it; the
+names follow ``lgw.sim.results`` where the meaning is the same ("nonfinite", "step_limit",
+"propellant_exhausted"); seed 001 has no landing criterion (the reference ends at h_f = 100 m
+above the surface at t_f), so a case that reaches t_end is "completed":
+
+  "completed"              reached t_end inside the model's domain; time: t_end;
+  "surface_contact"        r fell below the lunar radius R_MOON; time: the crossing, located on
+                           the cubic Hermite interpolant of r inside the step;
+  "propellant_exhausted"   the mass reached the dry mass ``RunOptions.m_dry``; time: the
+                           crossing, located likewise;
+  "quaternion_drift"       | ||Q|| - 1 | > QUAT_NORM_TOL (the integration does not renormalise
+                           Q, so drift means the step is too large); time: the node where
+                           detected;
+  "nonfinite"              the state became NaN / inf (or was at t = 0); time: the start of the
+                           step that blew up;
+  "step_limit"             dopri5 ran out of attempts; time: where it stopped.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+OUTCOMES = ("completed", "surface_contact", "propellant_exhausted", "quaternion_drift",
+            "nonfinite", "step_limit")
+DOMAIN_EXITS = OUTCOMES[1:4]
+
+
+def counts(code: np.ndarray) -> dict[str, int]:
+    """Cases per outcome (every outcome listed, zeros included)."""
+    return {name: int(np.sum(np.asarray(code) == k)) for k, name in enumerate(OUTCOMES)}
+
+
+def names(code: np.ndarray) -> list[str]:
+    return [OUTCOMES[int(k)] for k in np.asarray(code)]
+
+
+def json_safe(x):
+    """x with every non-finite float replaced by None (JSON has no NaN / inf), recursively;
+    numpy scalars and arrays become Python numbers and lists."""
+    if isinstance(x, dict):
+        return {str(k): json_safe(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [json_safe(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return json_safe(x.tolist())
+    if isinstance(x, np.bool_ | bool):
+        return bool(x)
+    if isinstance(x, np.integer):
+        return int(x)
+    if isinstance(x, float | np.floating):
+        return float(x) if np.isfinite(x) else None
+    return x
+
+
+def case_record(results: dict, i: int) -> dict:
+    """Case i of a kernel run's per-case results (``BatchResult.cases``) as a JSON-ready dict:
+    its one outcome and time, and the sampled quantities (None where undefined, e.g. no
+    saturation entry)."""
+    from lgw.sim.lunar.kernel import RESULT_FIELDS
+
+    rec = {"outcome": OUTCOMES[int(results["outcome"][i])],
+           "t_outcome_s": float(results["t_outcome"][i])}
+    for k in RESULT_FIELDS[2:]:
+        rec[k] = results[k][i]
+    rec["mass_final_kg"] = results["y_end"][i, 6]
+    rec["steps"] = results["steps"][i]
+    return json_safe(rec)
