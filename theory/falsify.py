@@ -172,11 +172,14 @@ def _roundings(x: float) -> list[float]:
 def shrink(problem: Problem, point: Mapping[str, float], margin: float,
            evaluate: Callable[[Mapping[str, float]], float] | None = None,
            max_passes: int = 3) -> tuple[dict[str, float], float]:
-    """Round the witness's coordinates to the simplest values that keep the margin < 0.
+    """Round the witness's coordinates to the simplest values that keep the violation.
 
-    Returns the shrunk point and its margin (never >= 0: a rounding that loses the violation
-    is not kept).  Coordinates stay inside the box and the claim's hypotheses."""
+    A rounding is kept when the margin stays at or below half the original (negative) margin,
+    so a shrunk witness is never a crumb at the edge of the violation that an independent
+    route's own error could erase.  Returns the shrunk point and its margin (always < 0).
+    Coordinates stay inside the box and the claim's hypotheses."""
     ev = evaluate or problem.margin
+    keep = 0.5 * margin
     best = dict(point)
     m_best = margin
     dims = {d.name: d for d in problem.dims}
@@ -193,7 +196,7 @@ def shrink(problem: Problem, point: Mapping[str, float], margin: float,
                     m = float(ev(trial))
                 except (ArithmeticError, ValueError, RuntimeError):
                     continue
-                if math.isfinite(m) and m < 0:
+                if math.isfinite(m) and m < 0 and m <= keep:
                     best, m_best, changed = trial, m, True
                     break
         if not changed:

@@ -168,7 +168,7 @@ def landing_time_fast(p: Mapping[str, float]) -> float:
         y0 = math.log(abs(s2))
         if y_end < y0:
             sol = solve_ivp(_capped(rhs), (y0, y_end), [s1], method="LSODA", rtol=1e-9,
-                            atol=1e-12 * (1 + abs(s1)))
+                            atol=1e-12)
             if not sol.success:
                 raise RuntimeError(sol.message)
             s1 = float(sol.y[0, -1])
