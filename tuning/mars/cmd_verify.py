@@ -45,7 +45,7 @@ def _fmt(x: float, spec: str = ".4g") -> str:
 @click.command("mars")
 @gains_option
 @click.option("--profile", type=click.Choice(list(PROFILES)), default="ci", show_default=True,
-              help="ci: 12 Hypothesis examples per claim group, small search budget; "
+              help="ci: 20 Hypothesis examples per claim group, small search budget; "
                    "thorough: 150 examples, a larger search")
 @click.option("--seed", type=int, default=0, show_default=True,
               help="derandomised run with this seed (Hypothesis and the search)")

@@ -84,7 +84,8 @@ def lgw_verify(request: pytest.FixtureRequest) -> VerifyReport:
     cli_profile = request.config.getoption("--lgw-profile")
     if cli_profile:
         opts["profile"] = cli_profile
-    if "database" not in opts and request.config.cache is not None:
-        opts["database"] = Path(request.config.cache.mkdir("lgw-examples"))
+    cache = getattr(request.config, "cache", None)  # None under -p no:cacheprovider
+    if "database" not in opts and cache is not None:
+        opts["database"] = Path(cache.mkdir("lgw-examples"))
     from lgw.testing.mars import check_bounds
     return VerifyReport(path, system, check_bounds(path, **opts))
