@@ -97,3 +97,13 @@ def test_bad_box_is_rejected():
         Dim("x", 1.0, 0.0)
     with pytest.raises(ValueError):
         Dim("x", 0.0, 1.0, "log")
+
+
+def test_confirm_negatives_keeps_false_alarms_from_stopping_the_search():
+    """A fast route with false alarms (here: everywhere inside the diamond): with
+    confirm_negatives the independent route's margin replaces them, and it is said so."""
+    p = Problem("false-alarm", BOX, _planted, lambda q: 1.0 + q["x"] ** 2, route="abs",
+                recheck_method="positive", relative=False, confirm_negatives=True)
+    s = falsify(p, SMALL)
+    assert s.status == "checked" and s.best_margin > 0 and s.counter is None
+    assert "not reproduced by the independent route" in s.method
