@@ -182,7 +182,7 @@ def test_sound_bound_survives_full_domain_search(search_id):
     """No confirmed counterexample to the workbench's bounds anywhere in the box."""
     s = _engine(search_id)
     assert s.status == "checked", (search_id, s.witness.to_dict() if s.witness else None)
-    event(f"{search_id}: best relative margin {s.best_margin:.3g} in {s.evaluations} evals")
+    assert s.best_margin > -1e-3 or s.counter is not None  # a false alarm says so
 
 
 @pytest.mark.slow
@@ -214,8 +214,13 @@ HARD_LANDING = [
 
 
 def _landing_case(p):
+    """(landing time, bound); a case the fast route cannot carry goes to the reference."""
     b = S.bound(p, "landing_time_bound")
-    t = S.landing_time_fast(p)
+    try:
+        t = S.landing_time_fast(p)
+    except RuntimeError:
+        event("landing: fast route failed, reference used")
+        t = S.landing_time_reference(p)
     return t, b
 
 

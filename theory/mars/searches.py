@@ -43,6 +43,7 @@ from lgw.theory.mars import bounds as B
 from lgw.theory.mars import mss as M
 from lgw.theory.mars.gains import Gains, gains_from_dict
 from lgw.theory.mars.reduced import surface_trajectory, trajectory
+from lgw.theory.settling import exact_bound
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
@@ -170,10 +171,17 @@ def landing_time_fast(p: Mapping[str, float]) -> float:
         y_end = max(math.log(1e-10 * t2 * a1 * (1 - g1)) / (1 - g1), -690.0)
         y0 = math.log(abs(s2))
         if y_end < y0:
-            sol = solve_ivp(_capped(rhs), (y0, y_end), [s1], method="LSODA", rtol=1e-9,
-                            atol=1e-12)
-            if not sol.success:
-                raise RuntimeError(sol.message)
+            sol = None
+            for method in ("LSODA", "Radau"):  # Radau where LSODA gives up (s1 stuck at 0)
+                try:
+                    sol = solve_ivp(_capped(rhs), (y0, y_end), [s1], method=method, rtol=1e-9,
+                                    atol=1e-12)
+                except RuntimeError:
+                    continue
+                if sol.success:
+                    break
+            if sol is None or not sol.success:
+                raise RuntimeError("landing fast route: LSODA and Radau failed")
             s1 = float(sol.y[0, -1])
     t1 = float(B.reaching_time(np.array([s1]), b1, b2, q1, q2)[0])
     return t2 + t1
@@ -184,7 +192,9 @@ def landing_time_reference(p: Mapping[str, float]) -> float:
     domain, (s1, w2) coordinates, LSODA rtol 1e-11, terminal events): the last grid node with
     s1 or s2 nonzero, plus one grid step (the true time is within that step, so this errs on
     the long side by at most one step: a re-checked violation is not made by the grid)."""
-    t_guess = 1.05 * landing_time_fast(p) + 1e-9
+    # horizon: 1.05 (T2* + T1*) from lgw.theory.settling directly (the proven supremum; not
+    # from lgw.theory.mars.bounds, which a test may have edited)
+    t_guess = 1.05 * _sum_star(p) + 1e-9
     gd = {k: p[k] for k in GAIN_KEYS}
     tr = surface_trajectory("corrected", gd, p["s1_0"], p["s2_0"], t_guess, n_out=40001)
     nz = np.flatnonzero((tr["s1"] != 0.0) | (tr["s2"] != 0.0))
@@ -205,7 +215,7 @@ def _landing_problem(name: str, bound_fn: Callable[[Mapping[str, float]], float]
         # the reference can only shorten the observed time by < one grid step; for a witness
         # take its *shortest* admissible landing time (the node before the last nonzero one)
         t = landing_time_reference(p)
-        h = 1.05 * landing_time_fast(p) / 40000
+        h = 1.05 * _sum_star(p) / 40000
         return (b - (t - 2 * h)) / b
 
     return Problem(name, dims, margin, recheck,
@@ -215,6 +225,11 @@ def _landing_problem(name: str, bound_fn: Callable[[Mapping[str, float]], float]
                                   "LSODA rtol 1e-11, events at s2 = 0 and s1 = 0), shortest "
                                   "time the 40001-node grid allows",
                    fixed=dict(fixed or {}))
+
+
+def _sum_star(p) -> float:
+    return float(exact_bound(p["alpha1"], p["alpha2"], p["g1"], p["g2"])
+                 + exact_bound(p["beta1"], p["beta2"], p["q1"], p["q2"]))
 
 
 def _max_paper(p):
