@@ -4,6 +4,7 @@ from lgw.testing.mars import (  # noqa: F401
     gain_dicts,
     gain_sets,
     log_uniform,
+    nonzero_surfaces,
     open_interval,
     per_axis,
     positions,

@@ -81,6 +81,8 @@ sim_positions = st.tuples(st.sampled_from([1.0, -1.0]), log_uniform(1e-6, 1e5)).
 # (lgw.theory.mars.searches), where |s2(0)| large is the regime in which the landing time
 # approaches T2* + T1*.
 surfaces = signed_magnitude(1e-3, 1e9)
+nonzero_surfaces = st.tuples(st.sampled_from([1.0, -1.0]), log_uniform(1e-3, 1e9)).map(
+    lambda t: t[0] * t[1])
 
 
 def state_batches(n_min: int = 1, n_max: int = 4) -> st.SearchStrategy[tuple[np.ndarray,
