@@ -44,6 +44,7 @@ from lgw.theory.mars import mss as M
 from lgw.theory.mars.gains import Gains, gains_from_dict
 from lgw.theory.mars.reduced import surface_trajectory, trajectory
 from lgw.theory.settling import exact_bound
+from lgw.theory.symbolic import LAMBDIFY_MODULES
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
@@ -357,7 +358,8 @@ def _s2dot_numeric():
     (s1, s2, a_p, gains): an independent route to the band's invariance."""
     s2 = sp.Symbol("s2", real=True)
     e = M.closed_loop("corrected").s2dot.subs(M.v, s2 + M.reaching_law_rhs(M.r))
-    return sp.lambdify((M.r, s2, M.ap, *M.GAIN_SYMBOLS), e, "math")
+    f = sp.lambdify((M.r, s2, M.ap, *M.GAIN_SYMBOLS), e, LAMBDIFY_MODULES)
+    return lambda *a: float(f(*a))
 
 
 def _s2_band_problem(scale: float = 1.0) -> Problem:
