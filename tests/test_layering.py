@@ -88,10 +88,20 @@ def test_the_checker_sees_a_forbidden_import(tmp_path):
 def test_every_package_folder_is_installed():
     cfg = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
     listed = set(cfg["packages"])
-    dirs = {"lgw." + ".".join(p.parent.relative_to(ROOT).parts)
-            for floor in FLOORS for p in (ROOT / floor).rglob("__init__.py")
-            if "_root" not in p.parts}
+    # folder -> package through the package-dir mapping (the longest mapped folder wins)
+    mapping = sorted(((Path(d).parts, pkg) for pkg, d in cfg["package-dir"].items()),
+                     key=lambda m: -len(m[0]))
+
+    def package(folder: Path) -> str:
+        parts = folder.relative_to(ROOT).parts
+        for prefix, pkg in mapping:
+            if parts[:len(prefix)] == prefix:
+                return ".".join([pkg, *parts[len(prefix):]])
+        raise AssertionError(f"{folder} is under no mapped folder")
+
+    dirs = {package(p.parent) for floor in FLOORS for p in (ROOT / floor).rglob("__init__.py")}
     assert dirs <= listed, sorted(dirs - listed)
+    assert listed <= dirs, sorted(listed - dirs)
     assert cfg["package-dir"]["lgw"] == "tuning/_root"
 
 

@@ -1,5 +1,12 @@
 """Property-based tests of seed 000's proven bounds (corrected law), each citing its equation.
 
+Two kinds.  The search tests run the falsification engine (lgw.theory.falsify) over the whole
+valid box of gains, exponents and initial surfaces on the exact reduced per-axis loop
+(lgw.theory.mars.searches), against the bounds of lgw.theory.mars.bounds as they are now: they
+reach the regimes random states never do (the landing time approaching T2* + T1*, s0 -> inf),
+so they fail with a shrunk, re-checked witness when a bound is replaced by the paper's
+max{T1*, T2*} or made a few percent too small (how that was checked: docs/verify.md).
+
 The simulator tests fly the corrected law with no thrust limit and drag="none" (the bounds are
 stated for that plant) through the same checker as ``lgw verify mars`` (lgw.tuning.mars.verify).
 Its
@@ -14,14 +21,23 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import assume, event, given, settings, target
+from hypothesis import assume, event, example, given, settings, target
+from lgw.theory.falsify import Budget, falsify
+from lgw.theory.mars import searches as S
 from lgw.theory.mars.bounds import axis_bounds, reaching_time
 from lgw.theory.mars.claims import t2_claim
 from lgw.theory.mars.gains import gains_from_dict
 from lgw.theory.mars.reduced import surface_trajectory
 from lgw.tuning.mars.verify import Campaign
 
-from tests.mars.strategies import gain_dicts, gain_sets, positions, state_batches
+from tests.mars.strategies import (
+    gain_dicts,
+    gain_sets,
+    nonzero_surfaces,
+    positions,
+    state_batches,
+    surfaces,
+)
 
 # Keep simulated horizons short in the default run (the bounds are fixed times of the gains).
 T_CAP = 400.0  # s, landing_time_bound
@@ -35,21 +51,18 @@ def _max_bound(g, key: str) -> float:
 def _check(g, r0, v0, claims):
     camp = Campaign(g)
     camp.run_batch(r0, v0, claims=claims)
-    out = {r.claim: r for r in camp.results()}
     for name in claims:
-        r = out[name]
-        event(f"{name}: skipped {r.n_nonfinite} nonfinite + {r.n_unresolved} unresolved "
-              f"of {r.n_cases}")
-    checked = sum(out[n].n_cases - out[n].n_nonfinite - out[n].n_unresolved for n in claims)
-    assume(checked > 0)  # every case skipped: nothing to check (counted by the events above)
+        event(f"{name}: checked {camp.checked[name]} of {camp.cases[name]} "
+              f"({camp.adaptive[name]} by dopri5, excluded {camp.excluded[name]})")
+    checked = sum(camp.checked[n] for n in claims)
+    assume(checked > 0)  # every case excluded: nothing to check (counted by the events above)
     for name in claims:
-        r = out[name]
-        if r.verdict == "no finite case":
-            continue
-        if np.isfinite(r.ratio):
-            target(r.ratio, label=name)
-        assert r.verdict == "holds", (name, r)
-    return out
+        fin = np.concatenate([r[0][np.isfinite(r[0])] for r in camp.rows[name]])
+        if fin.size:
+            target(float(fin.max()), label=name)
+        for ratio, obs, bnd, r0_, v0_, _case, label in camp.rows[name]:
+            assert np.all(ratio <= 1.0), (name, label, obs, bnd, r0_, v0_)
+    return camp
 
 
 def scaled(n: int) -> int:
@@ -155,3 +168,80 @@ def test_strategy_states_cover_zeros_and_decades():
     assert (a == 0).any() and (np.array(seen) < 0).any() and (np.array(seen) > 0).any()
     assert a[a > 0].min() < 1e-3 and a.max() > 1e2
 
+
+
+# --- the search tests: the engine over the full valid box -----------------------------------
+
+# (search id of lgw.theory.mars.searches, budget): small budgets, seconds each; a violation
+# stops the search early, so a broken bound costs less than a sound one.
+ENGINE = Budget(popsize=6, maxiter=10, local_evals=40, seed=0)
+SOUND_SEARCHES = ["T1", "T1*", "T2-corrected", "T2*", "landing-sum", "s2-neighborhood",
+                  "T2-practical", "T2-practical-exact", "s1-neighborhood", "T1-practical",
+                  "T1-practical-exact"]
+
+
+def _engine(search_id: str, budget: Budget = ENGINE):
+    return falsify(S.problems()[search_id][1], budget)
+
+
+@pytest.mark.parametrize("search_id", SOUND_SEARCHES)
+def test_sound_bound_survives_full_domain_search(search_id):
+    """No confirmed counterexample to the workbench's bounds anywhere in the box."""
+    s = _engine(search_id)
+    assert s.status == "checked", (search_id, s.witness.to_dict() if s.witness else None)
+    assert s.best_margin > -1e-3 or s.counter is not None  # a false alarm says so
+
+
+@pytest.mark.slow
+def test_disturbed_landing_sum_survives_full_domain_search():
+    """(40) + (45) from t = 0 under the worst disturbance (ODE per evaluation: slow)."""
+    s = _engine("T3-sum")
+    assert s.status == "checked", s.witness.to_dict() if s.witness else None
+
+
+def test_paper_landing_max_is_refuted_by_search():
+    """The paper's max{T1 (18), T2 (26)} for the whole landing: the engine finds, from
+    scratch, a state and gain set that lands later, re-checked by the reference."""
+    s = _engine("landing-time")
+    assert s.status == "refuted"
+    w = s.witness
+    assert w.margin < 0 and w.rechecked_margin < 0
+
+
+# The hard points the engine finds for the landing time (its worst points, rounded): balanced
+# gains with |s2(0)| large, where the landing time exceeds max{T1*, T2*} and approaches the sum.
+# Seeding Hypothesis with them makes the reduced-loop property below fail when the landing
+# bound of lgw.theory.mars.bounds is replaced by max{T1*, T2*}.
+HARD_LANDING = [
+    {"beta1": 0.2, "beta2": 0.01, "alpha1": 0.5, "alpha2": 0.02, "q1": 0.9, "q2": 1.5,
+     "g1": 0.7, "g2": 1.5, "s1_0": 0.005, "s2_0": 1e9},
+    {"beta1": 0.002, "beta2": 0.01, "alpha1": 0.008, "alpha2": 0.008, "q1": 0.4, "q2": 2.0,
+     "g1": 0.4, "g2": 1.3, "s1_0": -3e6, "s2_0": 50.0},
+]
+
+
+def _landing_case(p):
+    """(landing time, bound); a case the fast route cannot carry is counted, not judged."""
+    b = S.bound(p, "landing_time_bound")
+    try:
+        t = S.landing_time_fast(p)
+    except RuntimeError:
+        event("landing: fast route failed (stiff corner), case not judged")
+        assume(False)
+    return t, b
+
+
+@given(gd=gain_dicts(disturbance=False, sim=False), s1_0=nonzero_surfaces, s2_0=surfaces)
+@example(gd={"gains": {k: HARD_LANDING[0][k] for k in S.GAIN_KEYS}},
+         s1_0=HARD_LANDING[0]["s1_0"], s2_0=HARD_LANDING[0]["s2_0"])
+@example(gd={"gains": {k: HARD_LANDING[1][k] for k in S.GAIN_KEYS}},
+         s1_0=HARD_LANDING[1]["s1_0"], s2_0=HARD_LANDING[1]["s2_0"])
+@settings(max_examples=scaled(20))
+def test_reduced_landing_within_landing_time_bound(gd, s1_0, s2_0):
+    """Exact reduced loop: the landing time (s2 to 0, then s1 by (16)) is within
+    landing_time_bound of lgw.theory.mars.bounds (T2* + T1*)."""
+    g = gains_from_dict(gd)
+    p = {**g.axis(0), "s1_0": s1_0, "s2_0": s2_0}
+    t, b = _landing_case(p)
+    target(t / b, label="landing / bound")
+    assert t <= b * (1 + 1e-9), (p, t, b)

@@ -1,18 +1,27 @@
-"""``lgw verify mars``: a property campaign for seed 000's proven bounds (``verify``)."""
+"""``lgw verify mars``: seed 000's proven bounds for one gain set, never passing on missing
+evidence (``lgw.tuning.mars.verify``).  Exit 0 holds, 1 violated, 4 inconclusive, 2 bad input."""
 
 from __future__ import annotations
 
 import json
+import math
 import sys
 from pathlib import Path
 
 import click
 from lgw.theory.errors import ParameterError
 from lgw.tuning.mars.options import resolve_gains
-from lgw.tuning.mars.verify import CLAIMS, exit_code, run_campaign
+from lgw.tuning.mars.verify import (
+    CLAIMS,
+    MIN_CASES,
+    PROFILES,
+    VerifyOptions,
+    certificate_scale,
+    exit_code,
+    run_verify,
+)
 from lgw.tuning.options import gains_option
 from rich.console import Console
-from rich.progress import Progress
 from rich.table import Table
 
 
@@ -29,59 +38,83 @@ def _parse_scale(items: tuple[str, ...]) -> dict[str, float]:
     return out
 
 
+def _fmt(x: float, spec: str = ".4g") -> str:
+    return "-" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
+
+
 @click.command("mars")
 @gains_option
-@click.option("--examples", default=32, show_default=True, help="random initial states")
-@click.option("--seed", default=0, show_default=True, help="SeedSequence seed of the states")
-@click.option("--batch", default=16, show_default=True, help="states per simulate_batch call")
+@click.option("--profile", type=click.Choice(list(PROFILES)), default="ci", show_default=True,
+              help="ci: 20 Hypothesis examples per claim group, small search budget; "
+                   "thorough: 150 examples, a larger search")
+@click.option("--seed", type=int, default=0, show_default=True,
+              help="derandomised run with this seed (Hypothesis and the search)")
+@click.option("--random", "random_", is_flag=True, help="a random run (ignores --seed)")
+@click.option("--examples", type=int, default=None,
+              help="Hypothesis examples per claim group (default: the profile's)")
+@click.option("--min-cases", type=int, default=MIN_CASES, show_default=True,
+              help="checked simulated cases a claim needs for 'holds'")
+@click.option("--database", type=click.Path(file_okay=False, path_type=Path), default=None,
+              help="Hypothesis example database folder (replays earlier failures first)")
 @click.option("--dt", default=0.05, show_default=True, help="RK4 step (s)")
 @click.option("--eps", default=0.05, show_default=True, help="sliding band (m, m/s)")
 @click.option("--scale-bound", "scale", multiple=True, hidden=True,
               help="CLAIM=FACTOR: multiply a bound (self-test of the checker)")
+@click.option("--no-simulate", "no_sim", is_flag=True, hidden=True,
+              help="search only (no simulation: every claim is then inconclusive or violated)")
 @click.option("--json", "as_json", is_flag=True, help="print one JSON object")
-def command(gains_path: Path | None, examples: int, seed: int, batch: int,
-            dt: float, eps: float, scale: tuple[str, ...], as_json: bool) -> None:
-    """Check seed 000's proven bounds on random initial states (corrected law).
+def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
+            examples: int | None, min_cases: int, database: Path | None, dt: float, eps: float,
+            scale: tuple[str, ...], no_sim: bool, as_json: bool) -> None:
+    """Check seed 000's proven bounds for a gain set (corrected law).
 
-    Per claim: the bound, the worst observed time, the margin, the closest case (its initial
-    state and seed reproduce it) and a verdict.  Exit code 1 when a proven bound is violated.
+    Per claim: a falsification search on the exact reduced per-axis loop and Hypothesis-driven
+    simulations; the verdict is holds (>= --min-cases checked cases, no violation), violated
+    (exit 1, shrunk witness and a ready-to-paste reproduction) or inconclusive (exit 4).
     """
     g = resolve_gains(gains_path)
-    for name, x in (("dt", dt), ("eps", eps)):
-        if not x > 0:
-            raise ParameterError(name, x, "must be > 0")
-    sc = _parse_scale(scale)
+    sc = {**certificate_scale(g), **_parse_scale(scale)}
+    opts = VerifyOptions(profile=profile, seed=None if random_ else seed, database=database,
+                         min_cases=min_cases, dt=dt, eps=eps, scale=sc, examples=examples,
+                         simulate=not no_sim)
+    con = Console(stderr=True)
     if as_json:
-        results = run_campaign(g, examples, seed, dt=dt, eps=eps, scale=sc, batch=batch)
+        results = run_verify(g, opts)
     else:
-        with Progress(transient=True) as prog:
-            task = prog.add_task("flying cases", total=examples)
-            results = run_campaign(g, examples, seed, dt=dt, eps=eps, scale=sc, batch=batch,
-                                   progress=lambda done, _t: prog.update(task, completed=done))
+        with con.status("verifying") as st:
+            results = run_verify(g, opts, progress=lambda s: st.update(s))
     code = exit_code(results)
     if as_json:
-        click.echo(json.dumps({"examples": examples, "seed": seed, "dt": dt, "eps": eps,
+        click.echo(json.dumps({"profile": profile, "seed": opts.seed, "dt": dt, "eps": eps,
+                               "min_cases": min_cases, "scale": sc,
                                "claims": [r.to_dict() for r in results], "exit_code": code},
                               indent=2, default=float))
-    else:
-        t = Table(title=f"lgw verify mars: {examples} states, seed {seed}, dt {dt}, eps {eps}")
-        for col in ("claim", "eq.", "bound s", "worst s", "obs/bound", "margin s",
-                    "skipped", "verdict"):
-            t.add_column(col)
-        for r in results:
-            color = "green" if r.verdict == "holds" else "red"
-            t.add_row(r.claim, r.equation, f"{r.bound:.4g}", f"{r.worst:.4g}",
-                      f"{r.ratio:.3g}", f"{r.margin:.4g}",
-                      f"{r.n_nonfinite}+{r.n_unresolved}/{r.n_cases}",
-                      f"[{color}]{r.verdict}[/]")
-        con = Console()
-        con.print(t)
-        con.print("skipped = nonfinite (simulator) + unresolved (a step over the s1 = 0 "
-                  "singularity of the command) / cases; obs/bound > 1 is a violation")
-        for r in results:
-            c = r.closest
-            if c:
-                con.print(f"{r.claim}: closest case {c['case']} axis {c['axis']} "
-                          f"({c['disturbance']}), seed {c['seed']}, r0 = {c['r0']}, "
-                          f"v0 = {c['v0']}")
+        sys.exit(code)
+    t = Table(title=f"lgw verify mars: profile {profile}, seed {opts.seed}, dt {dt}, eps {eps}")
+    for col in ("claim", "eq.", "checked/cases", "dopri5", "excluded", "worst obs/bound",
+                "search best margin", "verdict"):
+        t.add_column(col)
+    for r in results:
+        color = {"holds": "green", "violated": "red"}.get(r.verdict, "yellow")
+        best = min((s["best_margin"] for s in r.search), default=math.nan)
+        t.add_row(r.claim, r.equation, f"{r.n_checked}/{r.n_cases}", str(r.n_adaptive),
+                  str(r.n_excluded), _fmt(r.ratio, ".3g"), _fmt(best, ".3g"),
+                  f"[{color}]{r.verdict}[/]")
+    out = Console() if sys.stdout.isatty() else Console(width=150)
+    out.print(t)
+    out.print("checked = simulated cases judged (dopri5: of them, carried by the adaptive path "
+              "after RK4 could not); excluded: no integrator carried them; search best margin "
+              "= least (bound - observed)/bound on the reduced loop, < 0 violates")
+    for r in results:
+        for why, n in r.excluded.items():
+            out.print(f"{r.claim}: {n} excluded: {why}")
+        if r.why:
+            out.print(f"{r.claim}: {r.verdict}: {r.why}")
+        for s in r.search:
+            out.print(f"{r.claim} search (axis {s['axis']}): {s['evaluations']} evaluations, "
+                      f"best margin {s['best_margin']:.4g}, {s['status']}", markup=False)
+        if r.witness:
+            out.print(f"{r.claim}: shrunk witness {r.witness}", markup=False)
+        if r.reproduction:
+            out.print(f"{r.claim}: reproduce with\n{r.reproduction}", markup=False)
     sys.exit(code)

@@ -1,0 +1,13 @@
+"""``lgw.testing``: property-based verification of a gain set inside a user's own test suite.
+
+Installed with the package; needs Hypothesis (``pip install "lgw[verify]"``).
+
+* ``lgw.testing.mars``: Hypothesis strategies for seed 000's gain sets and initial-state
+  envelopes, and property helpers (``check_bounds``, ``check_landing_within_bound``) that
+  return the same records ``lgw verify mars`` prints;
+* ``lgw.testing.plugin``: a pytest plugin (entry point ``pytest11``: ``lgw``) with the marker
+  ``@pytest.mark.lgw_gains(path, system="mars")`` and the fixture ``lgw_verify``; see
+  docs/verify.md for the ten-line test file.
+"""
+
+SYSTEMS = ("mars",)
