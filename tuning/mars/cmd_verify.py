@@ -3,13 +3,13 @@ evidence (``lgw.tuning.mars.verify``).  Exit 0 holds, 1 violated, 4 inconclusive
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from pathlib import Path
 
 import click
 from lgw.theory.errors import ParameterError
+from lgw.tuning.io import console, json_document
 from lgw.tuning.mars.options import resolve_gains
 from lgw.tuning.mars.verify import (
     CLAIMS,
@@ -20,7 +20,7 @@ from lgw.tuning.mars.verify import (
     exit_code,
     run_verify,
 )
-from lgw.tuning.options import gains_option
+from lgw.tuning.options import SEED, Integer, Number, choice, gains_option
 from rich.console import Console
 from rich.table import Table
 
@@ -44,25 +44,29 @@ def _fmt(x: float, spec: str = ".4g") -> str:
 
 @click.command("mars")
 @gains_option
-@click.option("--profile", type=click.Choice(list(PROFILES)), default="ci", show_default=True,
+@click.option("--profile", type=choice(PROFILES), default="ci", show_default=True,
               help="ci: 20 Hypothesis examples per claim group, small search budget; "
                    "thorough: 150 examples, a larger search")
-@click.option("--seed", type=int, default=0, show_default=True,
-              help="derandomised run with this seed (Hypothesis and the search)")
+@click.option("--seed", type=SEED, default=0, show_default=True,
+              help="derandomised run with this seed (Hypothesis and the search); integer in "
+                   "[0, 2^64 - 1]")
 @click.option("--random", "random_", is_flag=True, help="a random run (ignores --seed)")
-@click.option("--examples", type=int, default=None,
-              help="Hypothesis examples per claim group (default: the profile's)")
-@click.option("--min-cases", type=int, default=MIN_CASES, show_default=True,
-              help="checked simulated cases a claim needs for 'holds'")
+@click.option("--examples", type=Integer(1, 100_000, "examples"), default=None,
+              help="Hypothesis examples per claim group [default: the profile's]")
+@click.option("--min-cases", type=Integer(1, 10**7, "cases"), default=MIN_CASES,
+              show_default=True, help="checked simulated cases a claim needs for 'holds'")
 @click.option("--database", type=click.Path(file_okay=False, path_type=Path), default=None,
               help="Hypothesis example database folder (replays earlier failures first)")
-@click.option("--dt", default=0.05, show_default=True, help="RK4 step (s)")
-@click.option("--eps", default=0.05, show_default=True, help="sliding band (m, m/s)")
+@click.option("--dt", type=Number(0, 1, lo_open=True, unit="s"), default=0.05,
+              show_default=True, help="RK4 step (s)")
+@click.option("--eps", type=Number(0, lo_open=True, unit="m or m/s"), default=0.05,
+              show_default=True, help="sliding band (m, m/s)")
 @click.option("--scale-bound", "scale", multiple=True, hidden=True,
               help="CLAIM=FACTOR: multiply a bound (self-test of the checker)")
 @click.option("--no-simulate", "no_sim", is_flag=True, hidden=True,
               help="search only (no simulation: every claim is then inconclusive or violated)")
-@click.option("--json", "as_json", is_flag=True, help="print one JSON object")
+@click.option("--json", "as_json", is_flag=True,
+              help="print one JSON object (schema: docs/json.md)")
 def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
             examples: int | None, min_cases: int, database: Path | None, dt: float, eps: float,
             scale: tuple[str, ...], no_sim: bool, as_json: bool) -> None:
@@ -85,10 +89,11 @@ def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
             results = run_verify(g, opts, progress=lambda s: st.update(s))
     code = exit_code(results)
     if as_json:
-        click.echo(json.dumps({"profile": profile, "seed": opts.seed, "dt": dt, "eps": eps,
-                               "min_cases": min_cases, "scale": sc,
-                               "claims": [r.to_dict() for r in results], "exit_code": code},
-                              indent=2, default=float))
+        click.echo(json_document({"command": "verify mars", **g.to_dict(), "profile": profile,
+                                  "seed": opts.seed, "dt": dt, "eps": eps,
+                                  "min_cases": min_cases, "scale": sc,
+                                  "claims": [r.to_dict() for r in results],
+                                  "exit_code": code}, indent=2))
         sys.exit(code)
     t = Table(title=f"lgw verify mars: profile {profile}, seed {opts.seed}, dt {dt}, eps {eps}")
     for col in ("claim", "eq.", "checked/cases", "dopri5", "excluded", "worst obs/bound",
@@ -100,7 +105,7 @@ def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
         t.add_row(r.claim, r.equation, f"{r.n_checked}/{r.n_cases}", str(r.n_adaptive),
                   str(r.n_excluded), _fmt(r.ratio, ".3g"), _fmt(best, ".3g"),
                   f"[{color}]{r.verdict}[/]")
-    out = Console() if sys.stdout.isatty() else Console(width=150)
+    out = console()
     out.print(t)
     out.print("checked = simulated cases judged (dopri5: of them, carried by the adaptive path "
               "after RK4 could not); excluded: no integrator carried them; search best margin "
