@@ -12,25 +12,35 @@ import sys
 from pathlib import Path
 
 import click
+from lgw.tuning.options import SEED, Integer, Number
 
 EXIT_INFEASIBLE = 3
 
 
 @click.command("eros")
-@click.option("--ts", type=float, required=True, help="time target: reaching + sliding, s")
-@click.option("--u-max", type=float, required=True, help="per-axis control limit, m/s^2")
-@click.option("--e-max", type=float, default=10.0, show_default=True, help="envelope |e_i(0)|, m")
-@click.option("--v-max", type=float, default=0.5, show_default=True,
+@click.option("--ts", type=Number(0, 1e5, lo_open=True, unit="s"), required=True,
+              help="time target: reaching + sliding (s)")
+@click.option("--u-max", type=Number(0, 1e3, lo_open=True, unit="m/s^2"), required=True,
+              help="per-axis control limit (m/s^2)")
+@click.option("--e-max", type=Number(0, 1e5, lo_open=True, unit="m"), default=10.0,
+              show_default=True, help="envelope |e_i(0)| (m)")
+@click.option("--v-max", type=Number(0, 1e3, unit="m/s"), default=0.5, show_default=True,
               help="envelope |e_i'(0)|, m/s")
-@click.option("--dbar", type=float, default=0.0, show_default=True,
+@click.option("--dbar", type=Number(0, unit="m/s^2"), default=0.0, show_default=True,
               help="unknown disturbance bound (m/s^2); 0: D known in u_eq (14)")
-@click.option("--fresh-cases", type=int, default=200, show_default=True)
-@click.option("--seed", type=int, default=7, show_default=True)
+@click.option("--fresh-cases", type=Integer(1, 10**6, "cases"), default=200, show_default=True,
+              help="cases of the fresh acceptance campaign flown with the tuned gains")
+@click.option("--seed", type=SEED, default=7, show_default=True,
+              help="random seed (numpy SeedSequence); integer in [0, 2^64 - 1]")
 @click.option("--out", "out_path", type=click.Path(dir_okay=False, path_type=Path),
-              default=None, help="write the gains TOML with its [certificate]")
+              default=None, help="the gains TOML file to write (one file, with its "
+                                 "[certificate]); checked before any work, written atomically")
 def command(ts: float, u_max: float, e_max: float, v_max: float, dbar: float,
             fresh_cases: int, seed: int, out_path: Path | None) -> None:
     """Design FTSMC gains for a time target and a control limit, with a certificate."""
+    from lgw.tuning.io import atomic_write_text, check_out_file
+
+    check_out_file(out_path)
     from lgw.theory.eros.gains import gains_to_toml
     from lgw.tuning.eros.design import Request, tune
 
@@ -60,5 +70,5 @@ def command(ts: float, u_max: float, e_max: float, v_max: float, dbar: float,
     if out_path is not None:
         text = gains_to_toml(g, "lgw tune eros: seed 002 FTSMC gains") + "\n[certificate]\n"
         text += "\n".join(f"{k} = {json.dumps(v)}" for k, v in cert.items()) + "\n"
-        out_path.write_text(text)
+        atomic_write_text(out_path, text)
         click.echo(f"wrote {out_path}")

@@ -10,21 +10,25 @@ slower than the continuous-time theory by more than its tolerance allows.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import click
 from lgw.tuning.eros.options import resolve_gains
-from lgw.tuning.options import gains_option
+from lgw.tuning.io import json_document
+from lgw.tuning.options import SEED, Integer, choice, gains_option
 
 
 @click.command("eros")
 @gains_option
-@click.option("--cases", type=int, default=200, show_default=True)
-@click.option("--seed", type=int, default=11, show_default=True)
-@click.option("--disturbance", default="known", show_default=True,
+@click.option("--cases", type=Integer(1, 10**6, "cases"), default=200, show_default=True,
+              help="Monte Carlo initial offsets flown")
+@click.option("--seed", type=SEED, default=11, show_default=True,
+              help="random seed (numpy SeedSequence); integer in [0, 2^64 - 1]")
+@click.option("--disturbance", type=choice(("known", "unknown")), default="known",
+              show_default=True,
               help="known (bound with dbar = 0) or unknown (dbar = the chosen DIST_AMP)")
-@click.option("--json", "as_json", is_flag=True)
+@click.option("--json", "as_json", is_flag=True,
+              help="print one JSON object (strict, with lgw_version)")
 def command(gains_path: Path | None, cases: int, seed: int, disturbance: str,
             as_json: bool) -> None:
     """Observed tracking times of a Monte Carlo campaign against the proven per-case bound."""
@@ -57,7 +61,7 @@ def command(gains_path: Path | None, cases: int, seed: int, disturbance: str,
            "mean_bound_over_observed": float(np.mean(bound / t_obs)),
            "nonfinite": int(np.sum(m["nonfinite"]))}
     if as_json:
-        click.echo(json.dumps(out, indent=2))
+        click.echo(json_document({"command": "verify eros", **out}, indent=2))
         return
     click.echo(f"{cases} cases ({disturbance} D): {out['violations']} violations of the proven "
                f"per-case bound; worst margin {out['worst_margin_s']:.3f} s "

@@ -14,6 +14,7 @@ import sys
 
 import click
 from lgw.theory.errors import ParameterError
+from lgw.tuning.options import SEED, Integer, Number
 
 
 def _parse_scale(items: tuple[str, ...]) -> dict[str, float]:
@@ -35,17 +36,23 @@ def _parse_scale(items: tuple[str, ...]) -> dict[str, float]:
 
 
 @click.command("lunar")
-@click.option("--cases", type=int, default=64, show_default=True)
-@click.option("--seed", type=int, default=0, show_default=True)
-@click.option("--t-end", type=float, default=5.0, show_default=True, help="s")
-@click.option("--dt", type=float, default=0.02, show_default=True, help="RK4 step, s")
-@click.option("--u-max", type=float, default=2000.0, show_default=True,
-              help="per-axis saturation of u, N (inf: none)")
-@click.option("--min-cases", type=int, default=None,
-              help="checked cases a claim needs to hold (default 30)")
+@click.option("--cases", type=Integer(1, 10**6, "cases"), default=64, show_default=True,
+              help="random initial errors and gains flown")
+@click.option("--seed", type=SEED, default=0, show_default=True,
+              help="random seed (numpy SeedSequence); integer in [0, 2^64 - 1]")
+@click.option("--t-end", type=Number(0, 1e4, lo_open=True, unit="s"), default=5.0,
+              show_default=True, help="flight time per case (s)")
+@click.option("--dt", type=Number(0, 1, lo_open=True, unit="s"), default=0.02,
+              show_default=True, help="RK4 step (s)")
+@click.option("--u-max", type=Number(0, lo_open=True, unit="N; inf: none"), default=2000.0,
+              show_default=True, help="per-axis saturation of u (N; inf: none)")
+@click.option("--min-cases", type=Integer(1, 10**6, "cases"), default=None,
+              help="checked cases a claim needs to hold [default: 30]")
 @click.option("--scale", multiple=True, metavar="CLAIM=FACTOR",
-              help="multiply a bound (self-test of the checker), e.g. '(19a)=0.5'")
-@click.option("--json", "as_json", is_flag=True)
+              help="multiply a bound (self-test of the checker), e.g. '(19a)=0.5' "
+                   "[default: none]")
+@click.option("--json", "as_json", is_flag=True,
+              help="print one JSON object (strict, with lgw_version)")
 def command(cases: int, seed: int, t_end: float, dt: float, u_max: float,
             min_cases: int | None, scale: tuple[str, ...], as_json: bool) -> None:
     """V2 (13), (18), (19), (21a) against measured runs: per claim checked / excluded cases,
