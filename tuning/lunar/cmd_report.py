@@ -15,36 +15,39 @@ from lgw.tuning.options import gains_option
               required=True, help="directory to write report.md, report.tex, report.html")
 @click.option("--scenario/--no-scenario", "with_scenario", default=True, show_default=True,
               help="fly the Section 5 case (coupled and ideal pointing, ~2-4 min) for the "
-                   "scenario claims, the measured L2 norms and the figure")
+                   "scenario claims, the measured L2 norms and the figures (tracking errors, "
+                   "thrust around the failure, d0e against ||d||, V2 and Vlambda), embedded "
+                   "in report.html and written beside the report")
 def command(gains_path: Path | None, out_dir: Path, with_scenario: bool) -> None:
     """Derive and check every claim of seed 001 and write the report."""
     g = resolve_gains(gains_path)  # validated before anything is written
     from lgw.theory.lunar.claims import all_claims
-    from lgw.theory.lunar.report import coverage_section, render_view, report_spec
+    from lgw.theory.lunar.report import coverage_section, report_spec
     from lgw.theory.report import render_html, render_latex, render_markdown
     from lgw.tuning.lunar.report_sections import bounds_table, reference_section, run_scenario
 
-    sections, scenario, figure = [reference_section()], [], None
+    sections, scenario, figs = [reference_section()], [], ()
     measured = None
     if with_scenario:
-        out_dir.mkdir(parents=True, exist_ok=True)
-        scenario, sec, measured = run_scenario(out_dir / "section5.png")
+        scenario, sec, measured = run_scenario()
         sections.append(sec)
-        figure = "section5.png"
+        figs = sec.figures  # embedded in report.html, written beside the report
     claims = all_claims(scenario)
     sections.append(coverage_section(claims))
     bounds, note = bounds_table(g, measured)
     spec = report_spec(g, bounds, note)
-    views = [render_view(c) for c in claims]
+    views = claims  # the shared renderer reads evidence claims directly (scope, law, steps)
     docs = {"report.md": render_markdown(views, spec, sections),
             "report.tex": render_latex(views, spec, sections),
             "report.html": render_html(views, spec, sections)}
     out_dir.mkdir(parents=True, exist_ok=True)
     for name, text in docs.items():
         (out_dir / name).write_text(text)
+    from lgw.tuning.lunar.figures import write
+
+    written = [str(p) for p in write(list(figs), out_dir)]
     counts: dict[str, int] = {}
     for c in claims:
         counts[c.verdict] = counts.get(c.verdict, 0) + 1
-    click.echo(f"wrote {', '.join(str(out_dir / n) for n in docs)}"
-               + (f", {out_dir / figure}" if figure else ""))
+    click.echo(f"wrote {', '.join([str(out_dir / n) for n in docs] + written)}")
     click.echo("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
