@@ -213,3 +213,34 @@ def report_figures(g: Gains, base: SimOptions, mc=None, n: int = 0, seed: int = 
 def write(figs: list[Figure], out_dir: Path) -> list[Path]:
     """Write each figure's PNG into ``out_dir``; the paths written."""
     return [save_png(f.png, out_dir / f.file) for f in figs]
+
+
+def plot_run(g: Gains, base: SimOptions, names: tuple[str, ...], e0: np.ndarray,
+             ed0: np.ndarray, phase: np.ndarray, plot_dir: Path, seed: int = 0,
+             quiet: bool = False) -> list[Path]:
+    """``lgw simulate eros --plot DIR``: the variants flown by the command, re-flown with
+    histories on the same cases and options; tracking, control and chattering of case 0, and
+    for a campaign the per-case times."""
+    from lgw.sim.eros.campaign import summarize
+
+    runs = fly(g, base, e0, ed0, phase, names)
+    n = len(np.atleast_2d(e0))
+    what = (f"case 0 of {n}" if n > 1 else "one case") + (
+        f": e(0) = {np.round(np.atleast_2d(e0)[0], 4).tolist()} m, "
+        f"e'(0) = {np.round(np.atleast_2d(ed0)[0], 4).tolist()} m/s, {base.t_final:g} s")
+    figs = run_figures({k: _case0(r) for k, r in runs.items()}, what)
+    if n > 1:
+        figs.append(campaign_figure({k: summarize(metrics(r)) for k, r in runs.items()}, n,
+                                    seed))
+    paths = write(figs, plot_dir)
+    if not quiet:
+        import click
+
+        click.echo("wrote " + ", ".join(str(p) for p in paths))
+    return paths
+
+
+def _case0(r: Result) -> Result:
+    """Case 0 of a run (the figures draw case 0; metrics of it alone for the bars)."""
+    return replace(r, e=r.e[:, :1], ed=r.ed[:, :1], s=r.s[:, :1], u=r.u[:, :1], pos=r.pos[:1],
+                   vel=r.vel[:1], nonfinite=r.nonfinite[:1])

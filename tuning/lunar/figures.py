@@ -218,6 +218,19 @@ def write(figs: list[Figure], out_dir: Path) -> list[Path]:
     return [save_png(f.png, out_dir / f.file) for f in figs]
 
 
+def plot_run(res: BatchResult, ctx: Context, plot_dir: Path, quiet: bool = False) -> list[Path]:
+    """``lgw simulate lunar --plot DIR``: the report's figures of case 0 of the run flown."""
+    what = ("Section 5 case" if res.n_cases == 1 else
+            f"case 0 of {res.n_cases} random cases")
+    paths = write(report_figures(res, ctx, what=f"{what}, {ctx.opts.thrust_pointing} pointing"),
+                  plot_dir)
+    if not quiet:
+        import click
+
+        click.echo("wrote " + ", ".join(str(p) for p in paths))
+    return paths
+
+
 def section5_figure(res, path: Path, i: int = 0, ideal=None) -> None:
     """Height error, velocity error, error quaternion, thrust, torque and d0e of case i (and
     optionally the ideal-pointing run, dashed)."""
