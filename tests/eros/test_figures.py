@@ -4,6 +4,7 @@ campaign)."""
 
 import base64
 import io
+import json
 import re
 from dataclasses import replace
 
@@ -71,3 +72,21 @@ def test_report_embeds_the_figures(tmp_path, monkeypatch):
         assert png in embedded, name
         assert name in r.output
     assert "http:" not in html and "https:" not in html
+
+
+def test_simulate_plot_writes_the_figures(tmp_path):
+    """``lgw simulate eros --plot DIR``: the scenario's three figures for one variant, and the
+    campaign's times figure too with --cases."""
+    from lgw.tuning.eros.cmd_simulate import command as simulate_command
+
+    one, many = tmp_path / "one", tmp_path / "many"
+    r = CliRunner().invoke(simulate_command, ["--law", "fuzzy-tanh", "--t-final", "2",
+                                              "--plot", str(one)])
+    assert r.exit_code == 0, r.output
+    assert sorted(p.name for p in one.iterdir()) == sorted(FILES[:3])
+    r = CliRunner().invoke(simulate_command, ["--cases", "3", "--t-final", "2", "--json",
+                                              "--plot", str(many)])
+    assert r.exit_code == 0, r.output
+    for name in FILES:
+        assert (many / name).read_bytes().startswith(PNG_SIGNATURE), name
+    assert len(json.loads(r.output)["rows"]) == 6  # --json stays one JSON object
