@@ -175,7 +175,7 @@ def lyapunov_figure(res: BatchResult, ctx: Context, title: str, i: int = 0) -> b
 
 
 def report_figures(res: BatchResult, ctx: Context, ideal: tuple[BatchResult, Context] | None
-                   = None, what: str = "Section 5 case") -> list[Figure]:
+                   = None, what: str = "Section 5 case, paper gains") -> list[Figure]:
     """The figures of a recorded run (case 0), with captions stating what was flown; the
     ideal-pointing run, if given, is drawn dashed beside the coupled one."""
     o = ctx.opts
@@ -183,7 +183,7 @@ def report_figures(res: BatchResult, ctx: Context, ideal: tuple[BatchResult, Con
     if ideal is not None:
         runs.append(("ideal pointing", *ideal))
     tfail = failure_time(ctx)
-    note = (f"{what}, paper gains unless stated, RK4 dt = {res.dt:g} s, failure {o.failure!r} "
+    note = (f"{what}, RK4 dt = {res.dt:g} s, failure {o.failure!r} "
             f"to T_a = {o.Ta:g} at t = {tfail:.4g} s, saturation reading {o.sat_reading!r}")
     after = res.out["thrust_cmd"][res.t > tfail + 5.0, 0]
     peak = float(np.max(after)) if after.size else float("nan")  # NaN: run ends before
@@ -197,7 +197,8 @@ def report_figures(res: BatchResult, ctx: Context, ideal: tuple[BatchResult, Con
                f"Orbit thrust commanded and delivered, whole run and around the failure, with "
                f"the saturation level of (24) ({note}).  Commanded peak after t_fail + 5 s: "
                f"{peak / 1e3:.4g} kN; whole run {np.max(res.out['thrust_cmd'][:, 0]) / 1e3:.4g} "
-               f"kN (the axis is cut at {YMAX_FRACTION:g} T_max).",
+               f"kN (the axis is cut at {YMAX_FRACTION:g} T_max: a command above the cut "
+               "runs off the top).",
                thrust_figure(runs, "Seed 001: thrust around the failure")),
         Figure("lunar_d0e.png",
                f"Adaptive estimates d0e (8) against the disturbance norms measured along the "
@@ -222,8 +223,8 @@ def plot_run(res: BatchResult, ctx: Context, plot_dir: Path, quiet: bool = False
     """``lgw simulate lunar --plot DIR``: the report's figures of case 0 of the run flown."""
     what = ("Section 5 case" if res.n_cases == 1 else
             f"case 0 of {res.n_cases} random cases")
-    paths = write(report_figures(res, ctx, what=f"{what}, {ctx.opts.thrust_pointing} pointing"),
-                  plot_dir)
+    paths = write(report_figures(res, ctx, what=f"{what}, {ctx.opts.thrust_pointing} pointing, "
+                                 "the command's gains"), plot_dir)
     if not quiet:
         import click
 
