@@ -147,7 +147,8 @@ def d0e_figure(res: BatchResult, ctx: Context, title: str, i: int = 0) -> bytes:
 
 
 def lyapunov_figure(res: BatchResult, ctx: Context, title: str, i: int = 0) -> bytes:
-    """V2 (12) and Vlambda (16) of both loops against time (log scale)."""
+    """V2 (12) and Vlambda (16) of both loops against time (log scale; each loop in its own
+    units: orbit m^2 and m^2/s^2 terms, attitude dimensionless and rad^2/s^2)."""
     t, o = res.t, res.out
     v2 = lyapunov_v2(res, ctx, i)
 
@@ -160,9 +161,9 @@ def lyapunov_figure(res: BatchResult, ctx: Context, title: str, i: int = 0) -> b
             ax[0].plot(t, pos(v2[loop]), color=c, label=f"{loop} loop")
             key = "Vlam_o" if loop == "orbit" else "Vlam_a"
             ax[1].plot(t, pos(o[key][:, i]), color=c, label=f"{loop} loop")
-        ax[0].set_ylabel("V2 (12) [loop units] (log scale)")
+        ax[0].set_ylabel("V2 (12), log")
         ax[0].set_title("(a) V2 = |z1|^2/2 + |z2|^2/2 + (d0e - ||d||)^2/(2q)")
-        ax[1].set_ylabel("Vlambda (16) [loop units] (log scale, zeros not drawn)")
+        ax[1].set_ylabel("Vlambda (16), log (zeros not drawn)")
         ax[1].set_title("(b) Vlambda = (|lambda1|^2 + |lambda2|^2)/2 (saturation filter)")
         for a in ax:
             a.set_yscale("log")
