@@ -14,7 +14,10 @@ from lgw.tuning.options import gains_option
 @click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
               required=True, help="directory to write report.md, report.tex, report.html")
 @click.option("--sim/--no-sim", "with_sim", default=True, show_default=True,
-              help="fly the scenario and a campaign and judge the paper's simulation claims")
+              help="fly the scenario and a campaign, judge the paper's simulation claims and "
+                   "make the figures (the six variants' tracking errors, control and "
+                   "chattering; the campaign's reaching and tracked times), embedded in "
+                   "report.html and written beside the report")
 @click.option("--cases", type=int, default=100, show_default=True,
               help="Monte Carlo cases for the simulation claims")
 @click.option("--seed", type=int, default=1, show_default=True)
@@ -41,12 +44,17 @@ def command(gains_path: Path | None, out_dir: Path, with_sim: bool, cases: int,
         mc = monte_carlo(g, cases, seed, base)
         claims += scenario_claims(g, base, scen, mc)
         sections += RS.table2_sections(scen, table(mc[1]), cases)
+        sections.append(RS.figures_section(g, base, mc, cases, seed))
     docs = render_documents(claims, report_spec(g, axis_bounds(g)), sections)
     out_dir.mkdir(parents=True, exist_ok=True)
     for name, text in docs.items():
         (out_dir / name).write_text(text)
+    from lgw.tuning.eros.figures import write
+
+    # the figures embedded in report.html, also written beside the report
+    written = [str(p) for sec in sections for p in write(list(sec.figures), out_dir)]
     counts: dict[str, int] = {}
     for c in claims:
         counts[c.verdict] = counts.get(c.verdict, 0) + 1
-    click.echo(f"wrote {', '.join(str(out_dir / n) for n in docs)}")
+    click.echo(f"wrote {', '.join([str(out_dir / n) for n in docs] + written)}")
     click.echo("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))

@@ -31,8 +31,13 @@ COLUMNS = (("t_reach_max", "reach s"), ("t_track_all", "tracked s"), ("iae", "IA
 @click.option("--reference", default="exact", show_default=True,
               help="cubic coefficients: exact or printed")
 @click.option("--json", "as_json", is_flag=True, help="print the rows as JSON")
+@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
+              default=None, help="write figures (PNG) to DIR: the variants' tracking errors "
+                                 "per axis, control and chattering (case 0); a campaign: also "
+                                 "the reaching and tracked times of every case")
 def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: float, dt: float,
-            gravity: str, disturbance: str, reference: str, as_json: bool) -> None:
+            gravity: str, disturbance: str, reference: str, as_json: bool,
+            plot_dir: Path | None) -> None:
     """Fly seed 002's closed loop (sampled-data, zero-order hold) and print the Table 2 analogue:
     per variant the reaching and tracking times, IAE (sum over the samples and axes of |e_i|),
     control peak, effort and chattering (total variation of u); campaign rows give mean / max."""
@@ -44,7 +49,9 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
     from lgw.sim.eros.campaign import offsets, summarize
     from lgw.theory.eros import parameters as P
     from lgw.theory.errors import ParameterError
+    from lgw.tuning.io import check_out_dir
 
+    check_out_dir(plot_dir, "--plot")  # before any work
     g = resolve_gains(gains_path)
     variants = SL.VARIANTS if law == "all" else (SL.parse_variant(law),)
     if cases < 0:
@@ -71,6 +78,11 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
             row["e_final"] = m["e_final"][0].tolist()
             row["ed_final"] = m["ed_final"][0].tolist()
         rows.append(row)
+    if plot_dir is not None:
+        from lgw.tuning.eros.figures import plot_run
+
+        plot_run(g, base, tuple(SL.variant_name(*v) for v in variants), e0, ed0, ph, plot_dir,
+                 seed, quiet=as_json)
     if as_json:
         # strict JSON: a time that never happened (inf / NaN, e.g. never tracked) is null
         def clean(x):

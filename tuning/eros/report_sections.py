@@ -65,3 +65,17 @@ def table2_sections(scen: dict, mc_table: list[dict], n: int) -> list[Section]:
             "as the decimal point): fuzzy 113.4, FTSMC 139.6, PD 244.8 for an unpublished offset.")
     return [Section("Scenario (15 s, offset 5 m per axis, known D)", (note,), cols, srows),
             Section(f"Monte Carlo campaign ({n} cases): mean / max", (note,), cols, mrows)]
+
+
+FIGURES_NOTE = ("Made by lgw.tuning.eros.figures: the scenario re-flown with histories (the same "
+                "options as the table above) and the campaign's per-case times; each caption "
+                "states what was flown.  The same kinds come from "
+                "`lgw simulate eros ... --plot DIR`.")
+
+
+def figures_section(g, base, mc, n: int, seed: int) -> Section:
+    """The six variants side by side (scenario) and the Monte Carlo times, as figures."""
+    from lgw.tuning.eros.figures import report_figures
+
+    return Section("Figures: the six controllers side by side", (FIGURES_NOTE,), (), (),
+                   figures=tuple(report_figures(g, base, mc, n, seed)))

@@ -16,7 +16,9 @@ from lgw.tuning.options import gains_option
               required=True, help="directory to write report.md, report.tex, report.html")
 @click.option("--scenario/--no-scenario", "with_scenario", default=True, show_default=True,
               help="fly the Section 5 case (coupled and ideal pointing, ~2-4 min) for the "
-                   "scenario claims, the measured L2 norms and the figure")
+                   "scenario claims, the measured L2 norms and the figures (tracking errors, "
+                   "thrust around the failure, d0e against ||d||, V2 and Vlambda), embedded "
+                   "in report.html and written beside the report")
 def command(gains_path: Path | None, out_dir: Path, with_scenario: bool) -> None:
     """Derive and check every claim of seed 001 and write the report."""
     check_out_dir(out_dir)  # before any work
@@ -24,29 +26,29 @@ def command(gains_path: Path | None, out_dir: Path, with_scenario: bool) -> None
     from lgw.theory.lunar.claims import all_claims
     from lgw.theory.lunar.report import coverage_rows, report_spec
     from lgw.theory.report import claims_json, render_html, render_latex, render_markdown
+    from lgw.tuning.lunar.figures import write
     from lgw.tuning.lunar.report_sections import bounds_table, reference_section, run_scenario
 
-    sections, scenario, figure = [reference_section()], [], None
+    sections, scenario, figs = [reference_section()], [], ()
     measured = None
     if with_scenario:
-        make_out_dir(out_dir)
-        scenario, sec, measured = run_scenario(out_dir / "section5.png")
+        scenario, sec, measured = run_scenario()
         sections.append(sec)
-        figure = "section5.png"
+        figs = sec.figures  # embedded in report.html, written beside the report
     claims = all_claims(scenario)
     cov = coverage_rows()
     bounds, note = bounds_table(g, measured)
     spec = report_spec(g, bounds, note)
     docs = {"report.md": render_markdown(claims, spec, sections, coverage=cov),
             "report.tex": render_latex(claims, spec, sections, coverage=cov),
-            "report.html": render_html(claims, spec, sections, coverage=cov, asset_dir=out_dir),
+            "report.html": render_html(claims, spec, sections, coverage=cov),
             "claims.json": claims_json(claims)}
     make_out_dir(out_dir)
     for name, text in docs.items():
         atomic_write_text(out_dir / name, text)
+    written = [str(p) for p in write(list(figs), out_dir)]
     counts: dict[str, int] = {}
     for c in claims:
         counts[c.verdict] = counts.get(c.verdict, 0) + 1
-    click.echo(f"wrote {', '.join(str(out_dir / n) for n in docs)}"
-               + (f", {out_dir / figure}" if figure else ""))
+    click.echo(f"wrote {', '.join([str(out_dir / n) for n in docs] + written)}")
     click.echo("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))

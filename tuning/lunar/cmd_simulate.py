@@ -53,11 +53,17 @@ def random_cases(n: int, seed: int):
 @click.option("--json", "as_json", is_flag=True, help="print the per-case summaries as JSON")
 @click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
               default=None, help="write summary.json and section5.png there")
+@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
+              default=None, help="write figures (PNG) of case 0 to DIR: tracking errors, "
+                                 "thrust around the failure with T_max, d0e against ||d||, "
+                                 "V2 and Vlambda")
 def command(gains_path, cases, seed, pointing, failure, t_fail, ta, sat_reading, cmd_wn, dt,
-            t_end, as_json, out_dir) -> None:
+            t_end, as_json, out_dir, plot_dir) -> None:
     """Fly seed 001's closed loop: errors, thrust, torque, d0e, saturation, flags."""
     from lgw.theory.lunar import parameters as P
+    from lgw.tuning.io import check_out_dir
 
+    check_out_dir(plot_dir, "--plot")  # before any work
     if cases < 0 or cases > 100_000:
         raise ParameterError("--cases", cases, "must lie in [0, 100000]")
     if dt is not None and not 0 < dt <= 0.1:
@@ -93,6 +99,10 @@ def command(gains_path, cases, seed, pointing, failure, t_fail, ta, sat_reading,
 
     sums = [json_safe({**summarize(res, ctx, i).numbers, **case_record(res.cases, i)})
             for i in range(n)]
+    if plot_dir is not None:
+        from lgw.tuning.lunar.figures import plot_run
+
+        plot_run(res, ctx, plot_dir, quiet=as_json)
     if as_json:
         # strict JSON: undefined numbers (no saturation entry, ...) are null, never NaN
         click.echo(json.dumps(json_safe({"options": opts.__dict__, "reference": ref.to_dict(),

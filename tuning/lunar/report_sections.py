@@ -30,16 +30,20 @@ def reference_section() -> Section:
                           "model (1) with the same steering and thrust.",))
 
 
-def run_scenario(fig_path: Path):
+def run_scenario(fig_path: Path | None = None):
+    """The Section 5 claims, the scenario section (table and figures) and the measured run.
+    ``fig_path``: where the older one-file overview goes (None: not made)."""
     from lgw.sim.lunar.batch import rk4_batch
-    from lgw.tuning.lunar.figures import section5_figure
+    from lgw.tuning.lunar.figures import report_figures, section5_figure
 
     claims = scenario_claims()
     ctx, res, s = section5_runs()
     ctx_i, X0 = section5_case(opts=RunOptions(thrust_pointing="ideal"))
     res_i = rk4_batch(ctx_i, X0, record_every=2)
     si = summarize(res_i, ctx_i)
-    section5_figure(res, fig_path, ideal=res_i)
+    if fig_path is not None:
+        section5_figure(res, fig_path, ideal=res_i)
+    figs = report_figures(res, ctx, (res_i, ctx_i))
     keys = ("eh_final_m", "max_abs_eh_m", "max_abs_eh_after_failure_m",
             "thrust_cmd_max_after_failure_N", "orbit_saturated_s",
             "orbit_saturated_after_failure_s", "torque_saturated_s", "d0e_orbit_final",
@@ -54,9 +58,14 @@ def run_scenario(fig_path: Path):
                   paragraphs=("Coupled: the thrust direction (2) comes from the simulated "
                               "attitude (27). "
                    "Ideal pointing: the thrust follows the orbit command, the attitude loop "
-                   "flies decoupled (the paper treats (22) with u_o as the input).",),
-                  image=fig_path.name)
+                   "flies decoupled (the paper treats (22) with u_o as the input).",
+                   FIGURES_NOTE), figures=tuple(figs))
     return claims, sec, (res, ctx)
+
+
+FIGURES_NOTE = ("Figures: lgw.tuning.lunar.figures from the two runs of this table (coupled "
+                "solid, ideal pointing dashed); each caption states what was flown.  The same "
+                "figures come from `lgw simulate lunar ... --plot DIR`.")
 
 
 def bounds_table(g: Gains, measured=None):

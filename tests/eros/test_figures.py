@@ -1,0 +1,92 @@
+"""Seed 002's figures: valid PNGs, the same bytes twice, the chattering bars equal to the
+report's table, and ``lgw report eros`` embedding them in its HTML as data URIs (a small
+campaign)."""
+
+import base64
+import io
+import json
+import re
+from dataclasses import replace
+
+import numpy as np
+from click.testing import CliRunner
+from lgw.sim.eros.batch import SimOptions
+from lgw.sim.eros.campaign import monte_carlo, scenario
+from lgw.tuning.eros import figures as F
+from lgw.tuning.eros.cmd_report import command as report_command
+from lgw.tuning.eros.options import resolve_gains
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+FILES = ("eros_tracking.png", "eros_control.png", "eros_chatter.png", "eros_mc_times.png")
+SHORT = SimOptions(t_final=3.0)  # s: the variants' first seconds (reaching, first chattering)
+
+
+def _decode(png: bytes) -> np.ndarray:
+    import matplotlib.image as mpimg
+
+    return mpimg.imread(io.BytesIO(png), format="png")
+
+
+def test_figures_are_valid_deterministic_pngs():
+    g = resolve_gains(None)
+    mc = monte_carlo(g, 5, 3, SHORT)
+    figs = F.report_figures(g, SHORT, mc, 5, 3)
+    again = F.report_figures(g, SHORT, mc, 5, 3)
+    assert tuple(f.file for f in figs) == FILES
+    for f, h in zip(figs, again, strict=True):
+        assert f.png.startswith(PNG_SIGNATURE), f.file
+        img = _decode(f.png)
+        assert img.ndim == 3 and img.shape[0] > 300 and img.shape[1] > 700, f.file
+        assert img.std() > 0.01, f.file  # not a blank canvas
+        assert f.png == h.png, f"{f.file}: not the same bytes twice"
+        assert f.caption == h.caption
+
+
+def test_chatter_bars_are_the_tables_numbers():
+    """The bars (re-flown with histories here) equal the summaries lgw.sim.eros.campaign flies
+    for the report's scenario table, variant by variant."""
+    g = resolve_gains(None)
+    runs = F.scenario_runs(g, SHORT)
+    bars = F._chatter(runs)
+    table = scenario(g, SHORT)
+    assert set(bars) == set(table) == set(F.NAMES)
+    for name in F.NAMES:
+        np.testing.assert_allclose(bars[name], table[name]["chatter"], rtol=1e-12)
+    assert bars["pdsmc-sign"] > 10 * bars["pdsmc-tanh"]  # sgn chatters once on the surface
+
+
+def test_report_embeds_the_figures(tmp_path, monkeypatch):
+    """``lgw report eros`` end to end (a 3 s horizon, 3 cases): every figure is in report.html
+    as a data URI holding exactly the PNG written beside the report."""
+    import lgw.sim.eros.batch as B
+
+    monkeypatch.setattr(B, "SimOptions", lambda **kw: replace(SHORT, **kw))
+    r = CliRunner().invoke(report_command, ["--out", str(tmp_path), "--cases", "3"])
+    assert r.exit_code == 0, r.output
+    html = (tmp_path / "report.html").read_text()
+    embedded = {base64.b64decode(u) for u in
+                re.findall(r"src='data:image/png;base64,([A-Za-z0-9+/=]+)'", html)}
+    for name in FILES:
+        png = (tmp_path / name).read_bytes()
+        assert png.startswith(PNG_SIGNATURE)
+        assert png in embedded, name
+        assert name in r.output
+    assert "http:" not in html and "https:" not in html
+
+
+def test_simulate_plot_writes_the_figures(tmp_path):
+    """``lgw simulate eros --plot DIR``: the scenario's three figures for one variant, and the
+    campaign's times figure too with --cases."""
+    from lgw.tuning.eros.cmd_simulate import command as simulate_command
+
+    one, many = tmp_path / "one", tmp_path / "many"
+    r = CliRunner().invoke(simulate_command, ["--law", "fuzzy-tanh", "--t-final", "2",
+                                              "--plot", str(one)])
+    assert r.exit_code == 0, r.output
+    assert sorted(p.name for p in one.iterdir()) == sorted(FILES[:3])
+    r = CliRunner().invoke(simulate_command, ["--cases", "3", "--t-final", "2", "--json",
+                                              "--plot", str(many)])
+    assert r.exit_code == 0, r.output
+    for name in FILES:
+        assert (many / name).read_bytes().startswith(PNG_SIGNATURE), name
+    assert len(json.loads(r.output)["rows"]) == 6  # --json stays one JSON object
