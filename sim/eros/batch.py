@@ -216,7 +216,12 @@ def _controller(opts: SimOptions, g: Gains, coef: np.ndarray, t: float, pos, vel
     f = PL.rotating_terms(pos, vel) + PL.gravity(pos, "two-point")
     Dk = (opts.dist(t, case_phase) if opts.disturbance == "known" else np.zeros_like(pos))
     xdd = np.broadcast_to(ra, pos.shape)
-    u, s = SL.evaluate(opts.law, opts.switch, e, ed, f, Dk, xdd, g)
+    try:
+        u, s = SL.evaluate(opts.law, opts.switch, e, ed, f, Dk, xdd, g)
+    except OverflowError:
+        # a gain expression in Python floats overflowed (e.g. alpha**2 of the fuzzy distance
+        # at alpha = 1e300): the law cannot be evaluated, every case is flagged non-finite
+        u = s = np.full(pos.shape, np.nan)
     return u, s, e, ed
 
 
@@ -323,23 +328,34 @@ def reference_solve(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
                 continue
             U[kk] = u
 
-            def rhs(t, yy, u=u):
+            # integrate z = y / c, c a power of two >= the scale of y and of the interval's
+            # velocity change |u| dt (exact in floating point): solve_ivp's RMS error norm
+            # squares the state, which overflows for states beyond ~1e154 that the loop itself
+            # still represents.  atol on z is floored at 1e-16 (relative to c): it only binds
+            # for c > 1e5 m, where 1e-11 m absolute is below the state's own resolution.
+            dt_k = ts[kk + 1] - ts[kk]
+            c = 2.0 ** np.ceil(np.log2(max(1.0, float(np.max(np.abs(y))),
+                                           float(np.max(np.abs(u))) * dt_k)))
+
+            def rhs(t, zz, u=u, c=c):
+                yy = zz * c
                 p, v = yy[None, :3], yy[None, 3:]
                 if opts.disturbance == "none":
                     a = PL.rotating_terms(p, v) + PL.gravity(p, opts.gravity) + u
                 else:
                     a = PL.accel(t, p, v, u, opts.dist, cp, opts.gravity)
-                return np.concatenate([yy[3:], a[0]])
+                return np.concatenate([yy[3:], a[0]]) / c
             try:
-                sol = solve_ivp(rhs, (ts[kk], ts[kk + 1]), y, method="DOP853", rtol=rtol,
-                                atol=atol)
-                ok = sol.success and bool(np.all(np.isfinite(sol.y[:, -1])))
+                sol = solve_ivp(rhs, (ts[kk], ts[kk + 1]), y / c, method="DOP853", rtol=rtol,
+                                atol=max(atol / c, 1e-16))
+                ynew = sol.y[:, -1] * c
+                ok = sol.success and bool(np.all(np.isfinite(ynew)))
             except (ValueError, OverflowError, FloatingPointError):
                 ok = False
             if not ok:
                 bad, t_event = True, ts[kk]
                 continue
-            y = sol.y[:, -1]
+            y = ynew
     return Result(ts, E, ED, S, U, y[None, :3], y[None, 3:], np.array([bad]), opts, g,
                   np.array([contact]), np.array([t_event]))
 
