@@ -4,7 +4,7 @@ break a rule (0 expected for each):
   unexplained  a case without exactly one outcome, an outcome time outside [t0, t_final], or
                flags that contradict the outcome;
   impossible   |u_i| above what the law can ask for with its gains at that sample:
-               |f_i + D_k,i - xdd_i| + |e'_i| max ds/de + k (max ds/de = alpha + beta (p/q)
+               |f_i - xdd_i| + |D_k,i| + |e'_i| max ds/de + k (max ds/de = alpha + beta (p/q)
                e_floor^(p/q-1), lam for PD; fuzzy weights in [0, 1]), recomputed from the
                recorded errors;
   NaN/inf      a non-finite number in an unflagged case's histories or per-case measures
@@ -63,13 +63,12 @@ def u_bound(res) -> np.ndarray:
     coef = REF.coefficients(printed=o.reference == "printed")
     slope = g.lam if o.law == "pdsmc" else g.alpha + g.beta * g.r * g.e_floor ** (g.r - 1)
     out = np.empty_like(res.u)
-    n = res.u.shape[1]
     for kk, t in enumerate(res.t[:-1]):
         rp, rv, ra = REF.evaluate(coef, t)
         pos, vel = rp + res.e[kk], rv + res.ed[kk]
         f = PL.rotating_terms(pos, vel) + PL.gravity(pos, "two-point")
-        dk = o.dist(t, np.zeros(n)) if o.disturbance == "known" else 0.0
-        out[kk] = np.abs(f + dk - ra) + np.abs(res.ed[kk]) * slope + g.k
+        dk = o.dist.amp if o.disturbance == "known" else 0.0  # |D_k,i| <= amp, any phase
+        out[kk] = np.abs(f - ra) + dk + np.abs(res.ed[kk]) * slope + g.k
     return out
 
 
