@@ -151,3 +151,26 @@ def test_known_adversarial_states():
                    SimOptions(law="ftsmc", switch="sign", t_final=0.1))
     _check_one_outcome(big)
     assert OUTCOMES[big.outcome[0]] == "nonfinite" and 0 < big.t_outcome[0] < 0.1
+
+
+def test_simulate_json_is_strict_and_names_the_outcomes(tmp_path):
+    """``lgw simulate eros --json`` with a terminal gain at the float limit: every case is
+    named nonfinite with its time, and the output parses as strict JSON (no NaN / Infinity)."""
+    import json
+
+    from lgw.theory.eros.gains import gains_to_toml
+
+    from tests.eros.test_cli import lgw
+
+    path = tmp_path / "g.toml"
+    path.write_text(gains_to_toml(default_gains().replace(beta=1e300)))
+    r = lgw("simulate", "eros", "--law", "ftsmc-tanh", "--t-final", "0.1", "--gains", str(path),
+            "--json")
+    assert r.returncode == 0, r.stderr
+
+    def reject(token):
+        raise AssertionError(f"non-strict JSON token {token}")
+    out = json.loads(r.stdout, parse_constant=reject)
+    row = out["rows"][0]
+    assert row["outcomes"] == {"surface_contact": 0, "nonfinite": 1, "tracked": 0, "horizon": 0}
+    assert row["outcome"] == "nonfinite" and 0 <= row["t_outcome"] <= 0.1
