@@ -48,7 +48,6 @@ from lgw.theory.eros import reference as REF
 from lgw.theory.eros.gains import Gains
 from lgw.theory.errors import ParameterError
 from scipy.integrate import solve_ivp
-from scipy.spatial import cKDTree
 
 DIST_MODES = ("known", "unknown", "none")
 OUTCOMES = ("surface_contact", "nonfinite", "tracked", "horizon")
@@ -117,14 +116,30 @@ class Result:
 
 
 @cache
-def _body() -> tuple[np.ndarray, np.ndarray, cKDTree, float]:
-    """Box of the mesh vertices, a k-d tree of them and the longest edge L (m)."""
+def _body() -> tuple[np.ndarray, ...]:
+    """Box of the mesh vertices; per face a vertex, the unit normal, the centroid and the
+    radius of the ball about the centroid that holds the face (m)."""
     from lgw.theory.eros.polyhedron import eros_polyhedron
 
     P = eros_polyhedron()
-    v = P.vertices
-    edge = float(np.linalg.norm(v[P.he_b] - v[P.he_a], axis=1).max())
-    return v.min(axis=0), v.max(axis=0), cKDTree(v), edge
+    tri = P.vertices[P.faces]
+    cen = tri.mean(axis=1)
+    rad = np.linalg.norm(tri - cen[:, None], axis=2).max(axis=1)
+    return P.vertices.min(axis=0), P.vertices.max(axis=0), tri[:, 0], P.normals, cen, rad
+
+
+def clearance(pos: np.ndarray) -> np.ndarray:
+    """A lower bound (m) on the distance from each point (m, 3) to the mesh surface: the
+    minimum over faces of max(distance to the face's plane, distance to the ball about its
+    centroid that holds it) -- each is <= the distance to the face."""
+    _, _, a, n, cen, rad = _body()
+    out = np.empty(len(pos))
+    for i in range(0, len(pos), 16):
+        x = pos[i:i + 16, None, :]
+        plane = np.abs(np.einsum("pfi,fi->pf", x - a[None], n))
+        ball = np.linalg.norm(x - cen[None], axis=2) - rad[None]
+        out[i:i + 16] = np.maximum(plane, ball).min(axis=1)
+    return out
 
 
 def in_body(pos: np.ndarray) -> np.ndarray:
@@ -132,7 +147,7 @@ def in_body(pos: np.ndarray) -> np.ndarray:
     a bounding-box screen, then the solid-angle test (lgw.theory.eros.polyhedron.inside)."""
     from lgw.theory.eros.polyhedron import eros_polyhedron, inside
 
-    lo, hi, _, _ = _body()
+    lo, hi = _body()[:2]
     with np.errstate(invalid="ignore"):
         cand = np.all((pos >= lo) & (pos <= hi), axis=1)
     out = np.zeros(len(pos), bool)
@@ -142,11 +157,11 @@ def in_body(pos: np.ndarray) -> np.ndarray:
 
 
 class ContactMonitor:
-    """``in_body`` at every sample of a batch, exact but lazy: a point whose nearest mesh vertex
-    is at d_v is at least d_v - L from the surface (every surface point lies within L, the
-    longest edge, of a vertex), so a case keeps its last exactly-tested status until its path
-    since that test (the sum of its sample-to-sample displacements, >= its distance from the
-    tested point) reaches that clearance.  Points outside the vertex box are outside."""
+    """``in_body`` at every sample of a batch, exact but lazy: a case keeps its last
+    exactly-tested status until its path since that test (the sum of its sample-to-sample
+    displacements, >= its distance from the tested point) reaches the tested point's
+    ``clearance`` (a ball that does not meet the surface is all inside or all outside).
+    Points outside the vertex box are outside."""
 
     def __init__(self, n: int) -> None:
         self.status = np.zeros(n, bool)
@@ -158,7 +173,7 @@ class ContactMonitor:
         """Inside-status at this sample; cases in ``skip`` (frozen) are not re-tested."""
         from lgw.theory.eros.polyhedron import eros_polyhedron, inside
 
-        lo, hi, tree, edge = _body()
+        lo, hi = _body()[:2]
         with np.errstate(invalid="ignore", over="ignore"):
             if self.last is not None:
                 self.path += np.linalg.norm(pos - self.last, axis=1)
@@ -171,7 +186,7 @@ class ContactMonitor:
         if need.any():
             idx = np.flatnonzero(need)
             self.status[idx] = inside(eros_polyhedron(), pos[idx])
-            self.clear[idx] = tree.query(pos[idx])[0] - edge
+            self.clear[idx] = clearance(pos[idx])
             self.path[idx] = 0.0
         return self.status.copy()
 
