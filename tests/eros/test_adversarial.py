@@ -66,7 +66,9 @@ def _drift_bound(res, i: int) -> np.ndarray:
             f = PL.rotating_terms(pos, vel) + PL.gravity(pos, "two-point")
             dk = o.dist(t, np.zeros(1)) if o.disturbance == "known" else 0.0
             slope = g.lam if o.law == "pdsmc" else g.alpha + g.beta * g.r * g.e_floor ** (g.r - 1)
-            out[kk] = np.abs(f + dk - ra)[0] + np.abs(res.ed[kk, i]) * slope + g.k
+            # e' = 0 contributes nothing even where the bound on ds/de overflows (0 * inf)
+            term = np.where(res.ed[kk, i] == 0, 0.0, np.abs(res.ed[kk, i]) * slope)
+            out[kk] = np.abs(f + dk - ra)[0] + term + g.k
     return out
 
 
