@@ -13,13 +13,32 @@ independent route the tests compare against.
 
 Per case (``metrics``): tracking error history, reaching and settling ("tracked") times per axis,
 control peak and effort, chattering (total variation of u), the Table 2 analogue (IAE), the
-final state.  A case whose state or control becomes non-finite is flagged ``nonfinite`` and
-frozen (never silently dropped).
+final state.
+
+Outcomes (``OUTCOMES``): every case ends in exactly one, with its time (``Result.outcome``,
+``Result.t_outcome``), the first thing that happened:
+
+  "surface_contact"  the sampled position is inside the shape model of Eros (the polyhedron of
+                     lgw.theory.eros.polyhedron; checked at every sample t_k, after a bounding-box
+                     screen); time: the first such sample.  The case is frozen there (a crash:
+                     the plant (4) does not model contact).  Between samples a contact is not
+                     located (a probe faster than ~1e5 m/s could cross the body unseen).
+  "nonfinite"        the control u_k or the state became NaN / inf; time: the start t_k of the
+                     sample interval that blew up (u_k itself, or an RK4 stage within it).  The
+                     case is frozen at its last finite state and its held control recorded as 0
+                     (the blown-up command is not a number a peak could report).
+  "tracked"          neither, and |e_i| <= TRACK_TOL on every axis from some sample to t_final
+                     (metrics' t_track_all); time: that sample.
+  "horizon"          none of these by t_final; time: t_final.
+
+The reference route (``reference_solve``) applies the same rules, with a solve_ivp failure
+counted as "nonfinite" (it only fails here when the state or control overflows).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cache
 
 import numpy as np
 from lgw.sim.eros import laws as SL
@@ -31,6 +50,7 @@ from lgw.theory.errors import ParameterError
 from scipy.integrate import solve_ivp
 
 DIST_MODES = ("known", "unknown", "none")
+OUTCOMES = ("surface_contact", "nonfinite", "tracked", "horizon")
 
 
 @dataclass(frozen=True)
@@ -80,6 +100,124 @@ class Result:
     nonfinite: np.ndarray  # (cases,) bool
     options: SimOptions
     gains: Gains
+    contact: np.ndarray | None = None  # (cases,) bool: surface contact (see OUTCOMES)
+    t_event: np.ndarray | None = None  # (cases,) s: time of the contact / blow-up (NaN: none)
+    outcome: np.ndarray | None = None  # (cases,) int index into OUTCOMES (set by classify)
+    t_outcome: np.ndarray | None = None  # (cases,) s
+
+    def __post_init__(self) -> None:
+        n = len(self.nonfinite)
+        if self.contact is None:
+            self.contact = np.zeros(n, bool)
+        if self.t_event is None:
+            self.t_event = np.full(n, np.nan)
+        if self.outcome is None:
+            self.outcome, self.t_outcome = classify(self)
+
+
+@cache
+def _body() -> tuple[np.ndarray, ...]:
+    """Box of the mesh vertices; per face a vertex, the unit normal, the centroid and the
+    radius of the ball about the centroid that holds the face (m)."""
+    from lgw.theory.eros.polyhedron import eros_polyhedron
+
+    P = eros_polyhedron()
+    tri = P.vertices[P.faces]
+    cen = tri.mean(axis=1)
+    rad = np.linalg.norm(tri - cen[:, None], axis=2).max(axis=1)
+    return P.vertices.min(axis=0), P.vertices.max(axis=0), tri[:, 0], P.normals, cen, rad
+
+
+def clearance(pos: np.ndarray) -> np.ndarray:
+    """A lower bound (m) on the distance from each point (m, 3) to the mesh surface: the
+    minimum over faces of max(distance to the face's plane, distance to the ball about its
+    centroid that holds it) -- each is <= the distance to the face."""
+    _, _, a, n, cen, rad = _body()
+    out = np.empty(len(pos))
+    for i in range(0, len(pos), 16):
+        x = pos[i:i + 16, None, :]
+        plane = np.abs(np.einsum("pfi,fi->pf", x - a[None], n))
+        ball = np.linalg.norm(x - cen[None], axis=2) - rad[None]
+        out[i:i + 16] = np.maximum(plane, ball).min(axis=1)
+    return out
+
+
+def in_body(pos: np.ndarray) -> np.ndarray:
+    """True where a position (cases, 3) is inside the shape model of Eros (non-finite: False):
+    a bounding-box screen, then the solid-angle test (lgw.theory.eros.polyhedron.inside)."""
+    from lgw.theory.eros.polyhedron import eros_polyhedron, inside
+
+    lo, hi = _body()[:2]
+    with np.errstate(invalid="ignore"):
+        cand = np.all((pos >= lo) & (pos <= hi), axis=1)
+    out = np.zeros(len(pos), bool)
+    if cand.any():
+        out[cand] = inside(eros_polyhedron(), pos[cand])
+    return out
+
+
+class ContactMonitor:
+    """``in_body`` at every sample of a batch, exact but lazy: a case keeps its last
+    exactly-tested status until its path since that test (the sum of its sample-to-sample
+    displacements, >= its distance from the tested point) reaches the tested point's
+    ``clearance`` (a ball that does not meet the surface is all inside or all outside).
+    Points outside the vertex box are outside."""
+
+    def __init__(self, n: int) -> None:
+        self.status = np.zeros(n, bool)
+        self.clear = np.full(n, -1.0)  # clearance at the last exact test (< 0: test next time)
+        self.path = np.zeros(n)
+        self.last: np.ndarray | None = None
+
+    def __call__(self, pos: np.ndarray, skip: np.ndarray) -> np.ndarray:
+        """Inside-status at this sample; cases in ``skip`` (frozen) are not re-tested."""
+        from lgw.theory.eros.polyhedron import eros_polyhedron, inside
+
+        lo, hi = _body()[:2]
+        with np.errstate(invalid="ignore", over="ignore"):
+            if self.last is not None:
+                self.path += np.linalg.norm(pos - self.last, axis=1)
+            self.last = pos.copy()
+            fin = np.all(np.isfinite(pos), axis=1)
+            box = fin & np.all((pos >= lo) & (pos <= hi), axis=1)
+        self.status[~box] = False
+        self.clear[~box] = -1.0
+        need = box & ~(self.path < self.clear) & ~skip
+        if need.any():
+            idx = np.flatnonzero(need)
+            self.status[idx] = inside(eros_polyhedron(), pos[idx])
+            self.clear[idx] = clearance(pos[idx])
+            self.path[idx] = 0.0
+        return self.status.copy()
+
+
+def track_times(e: np.ndarray, t: np.ndarray, track_tol: float = P.TRACK_TOL) -> np.ndarray:
+    """Per case and axis: the first sample after which |e_i| <= track_tol for the rest of the
+    run (NaN if never).  e: (K+1, n, 3)."""
+    with np.errstate(invalid="ignore"):
+        out_band = ~(np.abs(e) <= track_tol)  # NaN counts as out of band
+    last_out = np.where(out_band.any(axis=0), len(t) - 1 - out_band[::-1].argmax(axis=0), -1)
+    return np.where(last_out < len(t) - 1, t[np.minimum(last_out + 1, len(t) - 1)], np.nan)
+
+
+def classify(res: Result) -> tuple[np.ndarray, np.ndarray]:
+    """(index into OUTCOMES, time in s) per case: exactly one outcome each (module docstring)."""
+    contact = np.asarray(res.contact, bool)
+    bad = np.asarray(res.nonfinite, bool) & ~contact
+    tt = track_times(res.e, res.t)
+    t_all = np.where(np.isnan(tt).any(axis=1), np.nan, np.nanmax(
+        np.where(np.isnan(tt), -np.inf, tt), axis=1))
+    tracked = ~contact & ~bad & np.isfinite(t_all)
+    code = np.select([contact, bad, tracked], [0, 1, 2], default=3)
+    t_end = float(res.t[-1])
+    t = np.select([contact | bad, tracked], [np.asarray(res.t_event, float), t_all],
+                  default=t_end)
+    return code, t
+
+
+def outcome_counts(code: np.ndarray) -> dict[str, int]:
+    """Cases per outcome (every outcome listed, zeros included)."""
+    return {name: int(np.sum(np.asarray(code) == i)) for i, name in enumerate(OUTCOMES)}
 
 
 def _ref_coef(opts: SimOptions) -> np.ndarray:
@@ -93,7 +231,12 @@ def _controller(opts: SimOptions, g: Gains, coef: np.ndarray, t: float, pos, vel
     f = PL.rotating_terms(pos, vel) + PL.gravity(pos, "two-point")
     Dk = (opts.dist(t, case_phase) if opts.disturbance == "known" else np.zeros_like(pos))
     xdd = np.broadcast_to(ra, pos.shape)
-    u, s = SL.evaluate(opts.law, opts.switch, e, ed, f, Dk, xdd, g)
+    try:
+        u, s = SL.evaluate(opts.law, opts.switch, e, ed, f, Dk, xdd, g)
+    except OverflowError:
+        # a gain expression in Python floats overflowed (e.g. alpha**2 of the fuzzy distance
+        # at alpha = 1e300): the law cannot be evaluated, every case is flagged non-finite
+        u = s = np.full(pos.shape, np.nan)
     return u, s, e, ed
 
 
@@ -104,7 +247,10 @@ def initial_state(e0: np.ndarray, ed0: np.ndarray, opts: SimOptions) -> tuple[np
 
 def simulate(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
              case_phase: np.ndarray | None = None) -> Result:
-    """Fly every case (rows of e0, ed0: initial position and velocity errors, m and m/s)."""
+    """Fly every case (rows of e0, ed0: initial position and velocity errors, m and m/s).
+
+    A case that touches the body or blows up is frozen from that sample on (module docstring);
+    the histories of a frozen case keep its last state, and its held control is 0."""
     e0, ed0 = np.atleast_2d(np.asarray(e0, float)), np.atleast_2d(np.asarray(ed0, float))
     if e0.shape != ed0.shape or e0.shape[1] != 3:
         raise ParameterError("e0", e0.shape, "e0 and ed0 must both be (cases, 3)")
@@ -118,7 +264,9 @@ def simulate(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
     ts = opts.t0 + opts.dt * np.arange(K + 1)
     E, ED, S = (np.empty((K + 1, n, 3)) for _ in range(3))
     U = np.empty((K, n, 3))
-    bad = np.zeros(n, dtype=bool)
+    bad = ~(np.all(np.isfinite(pos), axis=1) & np.all(np.isfinite(vel), axis=1))
+    contact = np.zeros(n, dtype=bool)
+    t_event = np.where(bad, ts[0], np.nan)
     h = opts.dt / opts.n_sub
 
     def f(t, p, v, u):
@@ -126,37 +274,49 @@ def simulate(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
             return v, PL.rotating_terms(p, v) + PL.gravity(p, opts.gravity) + u
         return v, PL.accel(t, p, v, u, opts.dist, cp, opts.gravity)
 
-    for kk in range(K + 1):
-        t = ts[kk]
-        u, s, e, ed = _controller(opts, g, coef, t, pos, vel, cp)
-        E[kk], ED[kk], S[kk] = e, ed, s
-        if kk == K:
-            break
-        nf = ~np.all(np.isfinite(u), axis=1)
-        if nf.any():
-            bad |= nf
-            u = np.where(nf[:, None], 0.0, u)
-        U[kk] = u
-        for j in range(opts.n_sub):
-            tj = t + j * h
-            k1p, k1v = f(tj, pos, vel, u)
-            k2p, k2v = f(tj + h / 2, pos + h / 2 * k1p, vel + h / 2 * k1v, u)
-            k3p, k3v = f(tj + h / 2, pos + h / 2 * k2p, vel + h / 2 * k2v, u)
-            k4p, k4v = f(tj + h, pos + h * k3p, vel + h * k3v, u)
-            npos = pos + h / 6 * (k1p + 2 * k2p + 2 * k3p + k4p)
-            nvel = vel + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
-            ok = np.all(np.isfinite(npos), axis=1) & np.all(np.isfinite(nvel), axis=1) & ~bad
-            bad |= ~ok
-            pos = np.where(ok[:, None], npos, pos)
-            vel = np.where(ok[:, None], nvel, vel)
-    return Result(ts, E, ED, S, U, pos, vel, bad, opts, g)
+    monitor = ContactMonitor(n)
+    with np.errstate(all="ignore"):  # overflow is detected and flagged per case below
+        for kk in range(K + 1):
+            t = ts[kk]
+            hit = monitor(pos, bad | contact) & ~bad & ~contact
+            if hit.any():
+                contact |= hit
+                t_event = np.where(hit, t, t_event)
+            u, s, e, ed = _controller(opts, g, coef, t, pos, vel, cp)
+            E[kk], ED[kk], S[kk] = e, ed, s
+            stopped = bad | contact
+            nf = ~(np.all(np.isfinite(u), axis=1) & np.all(np.isfinite(s), axis=1)) & ~stopped
+            if nf.any():
+                bad |= nf
+                t_event = np.where(nf, t, t_event)
+            if kk == K:
+                break
+            stopped = bad | contact
+            u = np.where(stopped[:, None], 0.0, u)
+            U[kk] = u
+            for j in range(opts.n_sub):
+                tj = t + j * h
+                k1p, k1v = f(tj, pos, vel, u)
+                k2p, k2v = f(tj + h / 2, pos + h / 2 * k1p, vel + h / 2 * k1v, u)
+                k3p, k3v = f(tj + h / 2, pos + h / 2 * k2p, vel + h / 2 * k2v, u)
+                k4p, k4v = f(tj + h, pos + h * k3p, vel + h * k3v, u)
+                npos = pos + h / 6 * (k1p + 2 * k2p + 2 * k3p + k4p)
+                nvel = vel + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
+                ok = np.all(np.isfinite(npos), axis=1) & np.all(np.isfinite(nvel), axis=1)
+                blew = ~ok & ~stopped
+                bad |= blew
+                t_event = np.where(blew, t, t_event)
+                stopped = bad | contact
+                pos = np.where(stopped[:, None], pos, npos)
+                vel = np.where(stopped[:, None], vel, nvel)
+    return Result(ts, E, ED, S, U, pos, vel, bad, opts, g, contact, t_event)
 
 
 def reference_solve(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
                     case_phase: float = 0.0, rtol: float = 1e-11,
                     atol: float = 1e-11) -> Result:
-    """One case by solve_ivp (DOP853) between samples, same sampled-data controller: the
-    independent route for the batched RK4."""
+    """One case by solve_ivp (DOP853) between samples, same sampled-data controller and the
+    same outcome rules (module docstring): the independent route for the batched RK4."""
     e0, ed0 = np.atleast_2d(e0), np.atleast_2d(ed0)
     coef = _ref_coef(opts)
     K = int(round(opts.t_final / opts.dt))
@@ -166,23 +326,53 @@ def reference_solve(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
     ts = opts.t0 + opts.dt * np.arange(K + 1)
     E, ED, S = (np.empty((K + 1, 1, 3)) for _ in range(3))
     U = np.empty((K, 1, 3))
-    for kk in range(K + 1):
-        u, s, e, ed = _controller(opts, g, coef, ts[kk], y[None, :3], y[None, 3:], cp)
-        E[kk], ED[kk], S[kk] = e, ed, s
-        if kk == K:
-            break
-        U[kk] = u
+    bad = contact = False
+    t_event = np.nan
+    with np.errstate(all="ignore"):
+        for kk in range(K + 1):
+            if not (bad or contact) and in_body(y[None, :3])[0]:
+                contact, t_event = True, ts[kk]
+            u, s, e, ed = _controller(opts, g, coef, ts[kk], y[None, :3], y[None, 3:], cp)
+            E[kk], ED[kk], S[kk] = e, ed, s
+            if not (bad or contact) and not (np.all(np.isfinite(u)) and np.all(np.isfinite(s))):
+                bad, t_event = True, ts[kk]
+            if kk == K:
+                break
+            if bad or contact:
+                U[kk] = 0.0
+                continue
+            U[kk] = u
 
-        def rhs(t, yy, u=u):
-            p, v = yy[None, :3], yy[None, 3:]
-            if opts.disturbance == "none":
-                a = PL.rotating_terms(p, v) + PL.gravity(p, opts.gravity) + u
-            else:
-                a = PL.accel(t, p, v, u, opts.dist, cp, opts.gravity)
-            return np.concatenate([yy[3:], a[0]])
-        sol = solve_ivp(rhs, (ts[kk], ts[kk + 1]), y, method="DOP853", rtol=rtol, atol=atol)
-        y = sol.y[:, -1]
-    return Result(ts, E, ED, S, U, y[None, :3], y[None, 3:], np.zeros(1, bool), opts, g)
+            # integrate z = y / c, c a power of two >= the scale of y and of the interval's
+            # velocity change |u| dt (exact in floating point): solve_ivp's RMS error norm
+            # squares the state, which overflows for states beyond ~1e154 that the loop itself
+            # still represents.  atol on z is floored at 1e-16 (relative to c): it only binds
+            # for c > 1e5 m, where 1e-11 m absolute is below the state's own resolution.
+            dt_k = ts[kk + 1] - ts[kk]
+            c = 2.0 ** np.ceil(np.log2(max(1.0, float(np.max(np.abs(y))),
+                                           float(np.max(np.abs(u))) * dt_k)))
+
+            def rhs(t, zz, u=u, c=c):
+                yy = zz * c
+                p, v = yy[None, :3], yy[None, 3:]
+                if opts.disturbance == "none":
+                    a = PL.rotating_terms(p, v) + PL.gravity(p, opts.gravity) + u
+                else:
+                    a = PL.accel(t, p, v, u, opts.dist, cp, opts.gravity)
+                return np.concatenate([yy[3:], a[0]]) / c
+            try:
+                sol = solve_ivp(rhs, (ts[kk], ts[kk + 1]), y / c, method="DOP853", rtol=rtol,
+                                atol=max(atol / c, 1e-16))
+                ynew = sol.y[:, -1] * c
+                ok = sol.success and bool(np.all(np.isfinite(ynew)))
+            except (ValueError, OverflowError, FloatingPointError):
+                ok = False
+            if not ok:
+                bad, t_event = True, ts[kk]
+                continue
+            y = ynew
+    return Result(ts, E, ED, S, U, y[None, :3], y[None, 3:], np.array([bad]), opts, g,
+                  np.array([contact]), np.array([t_event]))
 
 
 # --- per-case measures ------------------------------------------------------------------------
@@ -208,13 +398,12 @@ def metrics(res: Result, track_tol: float = P.TRACK_TOL) -> dict[str, np.ndarray
     chatter   total variation sum_k |u_i(k+1) - u_i(k)| (m/s^2);
     iae       Table 2 analogue: sum over samples and axes of |e_i(t_k)| (m) -- MATLAB's
               sum(abs(e)) over the 0.01 s samples; iae_int = the same times dt (m s);
-    e_final, ed_final: errors at t_final."""
+    e_final, ed_final: errors at t_final;
+    outcome, t_outcome: the case's one outcome (index into OUTCOMES) and its time (s)."""
     t, e, s, u = res.t, res.e, res.s, res.u
     crossed = np.sign(s) != np.sign(s[:1])
     t_reach = _first_true((np.abs(s) <= S_TOL) | crossed, t)
-    out_band = np.abs(e) > track_tol
-    last_out = np.where(out_band.any(axis=0), len(t) - 1 - out_band[::-1].argmax(axis=0), -1)
-    t_track = np.where(last_out < len(t) - 1, t[np.minimum(last_out + 1, len(t) - 1)], np.nan)
+    t_track = track_times(e, t, track_tol)
     dt = res.options.dt
     return {
         "t_reach": t_reach, "t_track": t_track,
@@ -223,4 +412,5 @@ def metrics(res: Result, track_tol: float = P.TRACK_TOL) -> dict[str, np.ndarray
         "chatter": np.abs(np.diff(u, axis=0)).sum(axis=0),
         "iae": np.abs(e).sum(axis=(0, 2)), "iae_int": np.abs(e).sum(axis=(0, 2)) * dt,
         "e_final": e[-1], "ed_final": res.ed[-1], "nonfinite": res.nonfinite,
+        "outcome": res.outcome, "t_outcome": res.t_outcome,
     }

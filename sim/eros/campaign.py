@@ -11,7 +11,7 @@ from dataclasses import replace
 
 import numpy as np
 from lgw.sim.eros import laws as SL
-from lgw.sim.eros.batch import SimOptions, metrics, simulate
+from lgw.sim.eros.batch import SimOptions, metrics, outcome_counts, simulate
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros.gains import Gains
 
@@ -26,12 +26,14 @@ def offsets(n: int, seed: int, e_max: float = P.MC_POS,
 
 
 def summarize(m: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """Per case scalars: worst axis for times, peaks; sums over axes for effort and chatter."""
+    """Per case scalars: worst axis for times, peaks; sums over axes for effort and chatter;
+    the case's outcome (index into lgw.sim.eros.batch.OUTCOMES) and its time."""
     return {"t_reach_max": np.nanmax(np.where(np.isnan(m["t_reach"]), np.inf, m["t_reach"]),
                                      axis=1),
             "t_track_all": m["t_track_all"], "iae": m["iae"], "iae_int": m["iae_int"],
             "u_peak": m["u_peak"].max(axis=1), "effort": m["effort"].sum(axis=1),
-            "chatter": m["chatter"].sum(axis=1), "nonfinite": m["nonfinite"]}
+            "chatter": m["chatter"].sum(axis=1), "nonfinite": m["nonfinite"],
+            "outcome": m["outcome"], "t_outcome": m["t_outcome"]}
 
 
 def run_variants(e0: np.ndarray, ed0: np.ndarray, g: Gains, base: SimOptions,
@@ -68,5 +70,6 @@ def table(res: dict[str, dict[str, np.ndarray]]) -> list[dict[str, float | str]]
             row[f"{k}_mean"] = float(np.mean(v))
             row[f"{k}_max"] = float(np.max(v))
         row["nonfinite"] = int(np.sum(d["nonfinite"]))
+        row["outcomes"] = outcome_counts(d["outcome"])
         rows.append(row)
     return rows

@@ -2,15 +2,18 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import click
 from lgw.tuning.eros.options import resolve_gains
+from lgw.tuning.io import json_document
 from lgw.tuning.options import gains_option
 from rich.console import Console
 from rich.table import Table
 
+OUTCOME_NOTE = ("one per case, the first that happened: surface_contact (a sample inside the "
+                "shape model), nonfinite (control or state NaN/inf), tracked (|e_i| <= 1 cm on "
+                "every axis to t_final), horizon (none of these by t_final); t_outcome in s")
 COLUMNS = (("t_reach_max", "reach s"), ("t_track_all", "tracked s"), ("iae", "IAE m"),
            ("u_peak", "peak m/s^2"), ("effort", "effort m/s"), ("chatter", "TV(u) m/s^2"))
 
@@ -45,7 +48,7 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
 
     import numpy as np
     from lgw.sim.eros import laws as SL
-    from lgw.sim.eros.batch import SimOptions, metrics, simulate
+    from lgw.sim.eros.batch import OUTCOMES, SimOptions, metrics, outcome_counts, simulate
     from lgw.sim.eros.campaign import offsets, summarize
     from lgw.theory.eros import parameters as P
     from lgw.theory.errors import ParameterError
@@ -68,11 +71,13 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
         m = metrics(res)
         s = summarize(m)
         row = {"variant": SL.variant_name(lw, sw), "cases": len(e0),
-               "nonfinite": int(s["nonfinite"].sum())}
+               "nonfinite": int(s["nonfinite"].sum()), "outcomes": outcome_counts(s["outcome"])}
         for k, _ in COLUMNS:
             row[k] = float(np.mean(s[k]))
             row[k + "_max"] = float(np.max(s[k]))
         if cases == 0:
+            row["outcome"] = OUTCOMES[int(s["outcome"][0])]
+            row["t_outcome"] = float(s["t_outcome"][0])
             row["t_reach_axes"] = m["t_reach"][0].tolist()
             row["t_track_axes"] = m["t_track"][0].tolist()
             row["e_final"] = m["e_final"][0].tolist()
@@ -84,20 +89,16 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
         plot_run(g, base, tuple(SL.variant_name(*v) for v in variants), e0, ed0, ph, plot_dir,
                  seed, quiet=as_json)
     if as_json:
-        # strict JSON: a time that never happened (inf / NaN, e.g. never tracked) is null
-        def clean(x):
-            if isinstance(x, float) and not np.isfinite(x):
-                return None
-            if isinstance(x, list):
-                return [clean(v) for v in x]
-            return x
-        rows = [{k: clean(v) for k, v in r.items()} for r in rows]
-        click.echo(json.dumps({"options": {"t_final": t_final, "dt": dt, "gravity": gravity,
-                                           "disturbance": disturbance, "reference": reference,
-                                           "cases": cases, "seed": seed},
-                               "rows": rows, "notes": {"null": "never happened within "
-                                                       "t_final (e.g. never tracked)"}},
-                              indent=2, allow_nan=False))
+        # strict JSON (json_document): a time that never happened (inf / NaN, e.g. never
+        # tracked) or an overflowed measure is null, with "nonfinite_replaced": true
+        click.echo(json_document({"options": {"t_final": t_final, "dt": dt, "gravity": gravity,
+                                              "disturbance": disturbance,
+                                              "reference": reference, "cases": cases,
+                                              "seed": seed},
+                                  "rows": rows,
+                                  "notes": {"null": "never happened within t_final (e.g. never "
+                                                    "tracked)",
+                                            "outcomes": OUTCOME_NOTE}}, indent=2))
         return
     title = "seed 002 scenario" if cases == 0 else f"seed 002 campaign, {cases} cases (mean/max)"
     t = Table(title=title)
@@ -109,5 +110,8 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
                  for k, _ in COLUMNS]
         t.add_row(r["variant"], *cells)
     Console().print(t)
+    for r in rows:
+        click.echo(f"{r['variant']} outcomes: " + ", ".join(f"{k} {v}" for k, v in
+                                                            r["outcomes"].items()))
     if any(r["nonfinite"] for r in rows):
         click.echo("warning: some cases became non-finite (flagged and frozen)")
