@@ -307,6 +307,10 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
         if stop_landing:  # out of propellant: the case ends at th = thd
             return STOP_INSIDE, thd  # noqa: F821
     if has_landed and stop_landing:
+        if yn[6] < m_dry and not ended:
+            # landed inside the step, and the node beyond is below the dry mass: end at the
+            # landing itself (the end state is the landed vehicle, never below m_dry)
+            return STOP_INSIDE, frac  # noqa: F821
         return STOP_AT_NODE, thd  # noqa: F821
     return CONTINUE, thd  # noqa: F821
 
