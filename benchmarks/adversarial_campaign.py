@@ -33,6 +33,7 @@ from lgw.theory.mars.parameters import LAND_POS_TOL, LAND_VEL_TOL, M_DRY
 
 T_MAX = 120.0
 NEAR_TARGET = 1e-6  # m, as tests/mars/test_adversarial.py
+FUEL_EDGE = 0.01  # of the load, as tests/mars/test_adversarial.py
 
 
 def adversarial_states(n: int, seed: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -88,7 +89,7 @@ def audit(res, m_dry: float = M_DRY, t_max: float = T_MAX) -> dict[str, np.ndarr
 def run(n: int, seed: int, method: str, chunk: int, thrust_max: float | None) -> dict:
     gains = default_gains()
     totals: Counter = Counter()
-    codes, times, shown = [], [], []
+    codes, times, shown, fuels = [], [], [], []
     near = []
     t0 = time.perf_counter()
     for start in range(0, n, chunk):
@@ -102,6 +103,7 @@ def run(n: int, seed: int, method: str, chunk: int, thrust_max: float | None) ->
             totals[key] += int(a[key].sum())
         codes.append(a["code"])
         times.append(res.outcomes()[1])
+        fuels.append(res.fuel)
         near.append(np.min(np.abs(r0), axis=1) < NEAR_TARGET)
         for i in np.flatnonzero(a["unexplained"] | a["impossible"] | a["nonfinite_out"])[:3]:
             shown.append(f"    case {start + i}: {OUTCOMES[a['code'][i]]} r0 {r0[i].tolist()} "
@@ -109,6 +111,7 @@ def run(n: int, seed: int, method: str, chunk: int, thrust_max: float | None) ->
                          f"{res.y_end[i].tolist()}, peaks {res.peak_thrust_unsat[i].tolist()}")
     seconds = time.perf_counter() - t0
     return {"counts": totals, "codes": np.concatenate(codes), "times": np.concatenate(times),
+            "fuel": np.concatenate(fuels),
             "near": np.concatenate(near), "shown": shown, "seconds": seconds}
 
 
@@ -137,12 +140,9 @@ def main() -> None:
         dis = a != b
         print(f"RK4/dopri5 outcome agreement: {int((~dis).sum())} of {len(a)} "
               f"({int(dis.sum())} disagree)")
-        # the knife-edge kinds of tests/mars/test_adversarial.py
-        near = out["rk4"]["near"]
-        step = np.abs(out["rk4"]["times"] - out["dopri5"]["times"]) < DT_DEFAULT
-        kind = np.where(near, "near", np.where(step, "step", "other"))[dis]
+        kind = disagreement_kinds(np.flatnonzero(dis), out, args)
         print("  kinds: " + ", ".join(f"{k} {int(np.sum(kind == k))}"
-                                      for k in ("near", "step", "other")))
+                                      for k in ("refined", "near", "step", "fuel", "other")))
         pairs = Counter((OUTCOMES[x], OUTCOMES[y], k)
                         for x, y, k in zip(a[dis], b[dis], kind, strict=True))
         for (x, y, k), cnt in pairs.most_common():
@@ -150,6 +150,33 @@ def main() -> None:
         for i in np.flatnonzero(dis)[kind == "other"][:20]:
             print(f"    other: case {i}: rk4 {OUTCOMES[a[i]]} at {out['rk4']['times'][i]:.6g} s,"
                   f" dopri5 {OUTCOMES[b[i]]} at {out['dopri5']['times'][i]:.6g} s")
+
+
+def disagreement_kinds(idx: np.ndarray, out: dict, args) -> np.ndarray:
+    """The kinds of tests/mars/test_adversarial.py for the disagreeing cases idx: "refined"
+    (RK4 at dt/10 gives dopri5's outcome), "near" (an axis within 1e-6 m of its target),
+    "step" (both outcomes within one RK4 step), "fuel" (landed vs dry with the larger fuel
+    within 1 % of the load), else "other"."""
+    rows = []
+    for start in range(0, args.cases, args.chunk):
+        sel = idx[(idx >= start) & (idx < start + args.chunk)] - start
+        if len(sel):
+            r0, v0, m0 = adversarial_states(min(args.chunk, args.cases - start), args.seed + start)
+            rows.append(np.column_stack([r0[sel], v0[sel], m0[sel]]))
+    x = np.concatenate(rows) if rows else np.empty((0, 7))
+    ca, cb = out["rk4"]["codes"][idx], out["dopri5"]["codes"][idx]
+    ta, tb = out["rk4"]["times"][idx], out["dopri5"]["times"][idx]
+    fine = simulate_batch(x[:, :3], x[:, 3:6], x[:, 6], default_gains(), t_max=T_MAX,
+                          dt=DT_DEFAULT / 10, thrust_limit=args.thrust_max)
+    refined = fine.outcomes()[0] == cb
+    near = np.min(np.abs(x[:, :3]), axis=1) < NEAR_TARGET
+    step = np.abs(ta - tb) < DT_DEFAULT
+    pair = np.array([{OUTCOMES[p], OUTCOMES[q]} == {"landed", "propellant_exhausted"}
+                     for p, q in zip(ca, cb, strict=True)], bool)
+    fuel = pair & (np.maximum(out["rk4"]["fuel"][idx], out["dopri5"]["fuel"][idx])
+                   >= (1 - FUEL_EDGE) * (x[:, 6] - M_DRY))
+    return np.select([refined, near, step, fuel], ["refined", "near", "step", "fuel"],
+                     default="other")
 
 
 if __name__ == "__main__":
