@@ -14,8 +14,9 @@ dopri5 is for landing statistics (landed, landing time and state, fuel, min alti
 contact): the closed loop is smooth between the arrivals of s1, s2 at 0, and the error
 control takes ~35-70 steps per Table II case where RK4 needs ~550 at dt = 0.05 s; at each
 non-smooth arrival it rejects and shrinks the step instead of stepping over it.  Peak thrust,
-saturation time and the s-band times are sampled at the accepted nodes, which are up to
-``max_step`` apart: use RK4 (whose nodes are dt apart) where those matter, as the tuner does.
+saturation time and the s-band times are sampled at the accepted steps (peaks at their
+stages too), which are up to ``max_step`` apart: use RK4 (whose nodes are dt apart) where those
+matter, as the tuner does.
 A case that needs more than ``max_steps`` attempts (e.g. chattering at s = 0 with
 stop="t_max") stops there, flagged ``step_limit``, not landed.
 
@@ -28,14 +29,19 @@ What is recorded per case (``BatchResult``):
     set's beta, q), from the signed linear interpolant of s between nodes (so a zero crossing
     inside a step counts); t_s1_last_exit, t_s2_last_exit: the last time s left that band
     (NaN if it never left after entering).  These are tracked until t_max when stop="t_max";
-  peak_thrust / peak_thrust_unsat: max |F_i| at the nodes until landing, after / before the
-    thrust limit; time_saturated: node-sampled time (left-endpoint rule) with the command
+  peak_thrust / peak_thrust_unsat: max |F_i| over the nodes and every stage evaluation of
+    the accepted steps until landing, after / before the thrust limit;
+    time_saturated: node-sampled time (left-endpoint rule) with the command
     limited on some axis, until landing; min_altitude and ground_contact (r_z < 0 before
     landing: the paper's Fig. 8 "collision"), from the minimum of the cubic Hermite interpolant
     of r_z over each step (not only its nodes), up to landing;
-  nonfinite: the state became NaN/inf (the corrected law's |s1|^(q1-1) v is +-inf at s1 = 0
-    with v != 0; with a thrust limit it saturates, without one the case is flagged and
-    stopped, never silently dropped).  ``t_end`` and ``y_end`` give where each case stopped;
+  blown_up: a stage asked for a command that cannot be flown (BLOWUP_ACCEL below: not
+    finite, above BLOWUP_ACCEL m0, or at a mass <= 0; e.g. the corrected law's |s1|^(q1-1) v
+    at s1 ~ 0 with v != 0 and no thrust limit): the step is not accepted, the case ends at
+    its start (outcome "command_blown_up");
+  nonfinite: a NaN/inf appeared: the state (the plant overflowed) or a blown-up command
+    that was not finite (then blown_up too), never silently dropped.  ``t_end`` and ``y_end``
+    give where each case stopped;
   fuel_exhausted: the mass reached the dry mass ``m_dry`` (default
   lgw.theory.mars.parameters.M_DRY),
     located inside the step by bisection on the cubic Hermite interpolant of m, like the
@@ -107,7 +113,7 @@ DRAG_CODE = {"none": 0, "physical": 1, "printed": 2}
 ARRAY_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thrust",
                 "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact", "t_s1",
                 "t_s2", "t_s1_last_exit", "t_s2_last_exit", "nonfinite", "fuel_exhausted",
-                "t_end", "y_end", "steps", "step_limit")
+                "t_end", "y_end", "steps", "step_limit", "blown_up")
 assert set(ARRAY_FIELDS) == set(mars_kernel.RESULT_FIELDS) | set(integrate.GENERIC_FIELDS)
 
 # Seed 000's integration defaults (values and their reasons in lgw.sim.mars.parameters).
@@ -115,6 +121,16 @@ INTEGRATION = IntegrationOptions(dt=DT_DEFAULT, rtol=DOPRI_RTOL, atol=DOPRI_ATOL
                                  max_step=DOPRI_MAX_STEP, max_steps=DOPRI_MAX_STEPS)
 LAND_TOL = (LAND_POS_TOL, LAND_VEL_TOL)
 DEFAULT_CHUNK = 4096
+# A commanded force above BLOWUP_ACCEL * m0 (N; m0 the case's initial mass) cannot be a thrust:
+# 1e5 m/s^2 is ~10^4 g, ~4000 times seed 000's 50 kN per axis on 1905 kg (26 m/s^2).  Such a
+# command (or one that is not finite, or one asked at a stage mass <= 0) is "blown up": the
+# law's |s1|^(q1-1) v at s1 ~ 0 with v != 0, or a step far too large for the dynamics.  The
+# step that evaluated it is not accepted; the case ends at that step's start, outcome
+# "command_blown_up" (lgw.sim.results), with every reported quantity from the accepted
+# steps.  Applied command: with a thrust limit it never exceeds the limit, so only a command
+# that is NaN or asked at a non-positive mass is blown up there.  The reference mode uses the
+# same threshold.
+BLOWUP_ACCEL = 1e5
 
 
 def stopping_defaults(**changes: Any) -> StoppingOptions:
@@ -149,6 +165,7 @@ class BatchResult:
     y_end: np.ndarray
     steps: np.ndarray
     step_limit: np.ndarray
+    blown_up: np.ndarray
     eps: float
     dt: float
     r0: np.ndarray | None = None
@@ -191,6 +208,7 @@ class BatchResult:
         exactly one per case, the first that happened (see lgw.sim.results)."""
         return classify(landed=self.landed, fuel_exhausted=self.fuel_exhausted,
                         nonfinite=self.nonfinite, step_limit=self.step_limit,
+                        blown_up=self.blown_up,
                         landing_time=self.landing_time, t_end=self.t_end,
                         stop_at_outcome=self.info.get("stop", "landing") == "landing")
 
@@ -371,13 +389,14 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
          AREA.astype(float), DRAG_CODE[drag], gkind, exhaust_velocity(isp), limits.fmax,
          limits.code, dkind, np.asarray(dist.amplitude, float), float(eps),
          stopping.land_tol[0], stopping.land_tol[1], stopping.stop == "landing",
-         float(stopping.m_dry))
+         float(stopping.m_dry), BLOWUP_ACCEL)
 
     out = {k: np.empty((n, 3)) for k in ("r_land", "v_land", "peak_thrust", "peak_thrust_unsat",
                                          "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit")}
     out.update({k: np.empty(n) for k in ("landing_time", "fuel", "time_saturated",
                                          "min_altitude")})
     out.update({k: np.zeros(n, bool) for k in ("landed", "ground_contact", "fuel_exhausted")})
+    out["blown_up"] = np.zeros(n)  # the kernel's code: 0, 1 too large, 2 not finite
     out.update(integrate.generic_outputs(n, mars_kernel.NY))
     R = tuple(out[k] for k in mars_kernel.RESULT_FIELDS)  # noqa: N806
     G = tuple(out[k] for k in integrate.GENERIC_FIELDS)  # noqa: N806
@@ -397,6 +416,11 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
     with notice:
         executors.run_local(run, n, chunk, progress=progress)
 
+    # a command that was not finite is also a non-finite value (the state stays finite: the
+    # step that made it was not accepted); one outcome per case all the same (outcomes())
+    code = out["blown_up"]
+    out["nonfinite"] |= code == 2.0
+    out["blown_up"] = code > 0.0
     traj = None
     if record:
         dt = integration.dt

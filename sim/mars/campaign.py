@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 from lgw.sim import executors
 from lgw.sim.mars.batch import BatchResult, simulate_batch
+from lgw.sim.results import OUTCOMES, counts
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.gains import Gains
 from lgw.theory.mars.parameters import M0, M_DRY, R0, V0
@@ -191,6 +192,9 @@ def summarize(res: BatchResult) -> dict[str, Any]:
         "m_dry": res.info.get("m_dry", M_DRY),
         # dopri5 only: the case needed more than max_steps attempts and stopped unfinished
         "step_limit": int(res.step_limit.sum()),
+        # one outcome per case (lgw.sim.results: the first that happened), every outcome
+        # listed; the flags above may overlap, these do not and sum to "cases"
+        "outcomes": counts(res.outcomes()[0]),
         "landing_error_m": _stats(err),
         "landing_speed_mps": _stats(np.linalg.norm(res.v_land[ok], axis=1) if ok.any()
                                     else np.array([])),
@@ -218,6 +222,7 @@ def _num(x: float) -> float | None:
 def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]:
     """One JSON-ready record per case (NaN -> null); the first ``n`` cases only if given."""
     recs = []
+    code, t_out = res.outcomes()
     for i in range(len(res) if n is None else min(n, len(res))):
         recs.append({
             "case": i, "r0": res.r0[i].tolist(), "v0": res.v0[i].tolist(),
@@ -236,5 +241,7 @@ def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]
             "step_limit": bool(res.step_limit[i]), "steps": int(res.steps[i]),
             "t_end": _num(res.t_end[i]),
             "eps": res.eps,
+            # the case's one outcome (lgw.sim.results.OUTCOMES) and its time, s
+            "outcome": OUTCOMES[code[i]], "outcome_time": _num(t_out[i]),
         })
     return recs

@@ -6,12 +6,12 @@ code (``lgw.sim.mars.laws.law_module_source``) and the integrator's ``case`` / `
 them.  What they compute is documented in ``lgw.sim.mars.batch``.
 
 State y = [r (3), v (3), m] (seed 000 (10)-(14)); auxiliary outputs X = [F (3) after the
-thrust limit, F (3) before it, s2 (3) of (21), the law's acceleration a (3)]; trackers S,
-slots below.
+thrust limit, F (3) before it, s2 (3) of (21), the law's acceleration a (3), stage peaks and the
+blown-up flag of the current step attempt (below)]; trackers S, slots below.
 
 Per-case inputs C = (r0, v0, m0, dcoef, domega, dphase); shared Q = (P, SP, grav, area, pkind,
-gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v, stop_landing, m_dry); results R = the
-first ``len(RESULT_FIELDS)`` arrays of ``lgw.sim.mars.batch.ARRAY_FIELDS``.
+gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v, stop_landing, m_dry, blow_acc); results
+R = the first ``len(RESULT_FIELDS)`` arrays of ``lgw.sim.mars.batch.ARRAY_FIELDS``.
 """
 
 from __future__ import annotations
@@ -30,7 +30,14 @@ from lgw.sim.mars.parameters import (
 )
 
 NY = 7  # r, v, m
-NX = 12  # F after the limit, F before, s2, the law's acceleration a (F before = m a)
+# F after the limit (0:3), F before (3:6), s2 (6:9), the law's acceleration a (9:12; F before =
+# m a); then, over the rhs calls of the current step attempt (reset at its first stage): max
+# |F_i| after (12:15) and before (15:18) the limit, and > 0 if any call's command was blown up
+# (18: 2.0 if not finite, 1.0 if too large or at a mass <= 0; see sys_rhs)
+NX = 19
+XPK = 12
+XPKU = 15
+XBLOWN = 18
 # tracker slots in S
 TF = 0  # 6: first entry into the band, s1 x/y/z then s2 x/y/z
 TX = 6  # 6: last exit
@@ -43,11 +50,13 @@ GROUND = 26  # 1.0 once r_z < 0 before the outcome
 LANDED = 27
 DRY = 28
 TLAND = 29
-NS = 30
+BLOWN = 30  # > 0 once a step had a blown-up command (2: not finite); the case ended there
+NS = 31
 
 RESULT_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thrust",
                  "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact",
-                 "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit", "fuel_exhausted")
+                 "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit", "fuel_exhausted",
+                 "blown_up")
 
 
 @numba.njit(error_model="numpy", inline="always", cache=True)
@@ -89,6 +98,7 @@ def sys_init(i, C, Q, y, S):  # noqa: N803
     S[LANDED] = 0.0
     S[DRY] = 0.0
     S[TLAND] = math.nan
+    S[BLOWN] = 0.0
 
 
 def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
@@ -96,7 +106,7 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     saturated by the limit; X = [F after the limit, F before, s2 (21) per axis]."""
     r0, v0, m0, dcoef, domega, dphase = C
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
-     stop_landing, m_dry) = Q
+     stop_landing, m_dry, blow_acc) = Q
     m = Y[yr, 6]
     fac_g = _drag_fac(gkind, Y[yr, 2])
     fac_p = fac_g if pkind == gkind else _drag_fac(pkind, Y[yr, 2])
@@ -129,6 +139,21 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
         for ax in range(3):
             X[ax] = X[3 + ax]
     fn = math.sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2])
+    # a blown-up command: not finite, above blow_acc m0 (BLOWUP_ACCEL, lgw.sim.mars.batch: no
+    # thrust), or asked at a non-positive mass (the stage state is not a vehicle).  The step
+    # that made it is never accepted (sys_step ends the case at its start), so the stage gets a
+    # finite stand-in, no thrust, instead of an inf that would hide it as a non-finite state;
+    # dopri5 may instead reject the attempt and retry a smaller step
+    bad_cmd = not (fn <= blow_acc * m0[i]) or not (m > 0.0)
+    if kr <= 1:  # the t = 0 call or the first stage of a step attempt
+        for j in range(6):
+            X[XPK + j] = 0.0
+        X[XBLOWN] = 0.0
+    for ax in range(3):
+        X[XPK + ax] = max(X[XPK + ax], abs(X[ax]))
+        X[XPKU + ax] = max(X[XPKU + ax], abs(X[3 + ax]))
+    if bad_cmd:  # 2: the command is not finite (also flagged nonfinite), 1: it is too large
+        X[XBLOWN] = max(X[XBLOWN], 1.0 if math.isfinite(fn) else 2.0)
     for ax in range(3):
         # "sin" arrives here as kind 2 with one unit-frequency term (simulate_batch): a
         # separate one-call branch was executed speculatively by LLVM at every RHS
@@ -142,7 +167,9 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
         else:
             ap = 0.0
         K[kr, ax] = Y[yr, 3 + ax]
-        if Y[yr, ax] == 0.0 and Y[yr, 3 + ax] == 0.0 and X[ax] == X[3 + ax]:
+        if bad_cmd:
+            acc = 0.0
+        elif Y[yr, ax] == 0.0 and Y[yr, 3 + ax] == 0.0 and X[ax] == X[3 + ax]:
             # an axis exactly at rest on its target with its command unlimited: the law's
             # acceleration a itself, not (m a) / m, which differs from a by an ulp; with a =
             # -g - a_m (the law's limit there, lgw.sim.mars.laws.origin_expr) the sum is
@@ -153,15 +180,15 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
             acc = X[ax] / m
         K[kr, 3 + ax] = (acc + grav[ax]
                          + _drag(pkind, fac_p, Y[yr, 3 + ax], area[ax], m) + ap)
-    K[kr, 6] = -fn / c
+    K[kr, 6] = 0.0 if bad_cmd else -fn / c
 
 
 def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
     """Bands entered at t = 0 and landing at t = 0; True if the case ends there."""
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
-     stop_landing, m_dry) = Q
+     stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh) = R
+     ts1x, ts2x, fexh, blown) = R
     for ax in range(3):
         S[SOLD + ax] = y[ax]
         S[SOLD + 3 + ax] = X[6 + ax]
@@ -176,6 +203,9 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
             r_land[i, ax] = y[ax]
             v_land[i, ax] = y[3 + ax]
         fuel[i] = 0.0
+    if X[XBLOWN] != 0.0 and not (S[LANDED] != 0.0 and stop_landing):
+        S[BLOWN] = X[XBLOWN]  # the command at t = 0 is blown up: nothing can be flown
+        return True
     return S[LANDED] != 0.0 and stop_landing
 
 
@@ -183,9 +213,19 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
     """Dry mass, s-bands, landing and the metrics of one accepted step (lgw.sim.mars.batch)."""
     r0, v0, m0, dcoef, domega, dphase = C
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
-     stop_landing, m_dry) = Q
+     stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh) = R
+     ts1x, ts2x, fexh, blown) = R
+    if X[XBLOWN] != 0.0:
+        # a blown-up command at a stage of this step (or at its new node): the step is not
+        # accepted and the case ends at its start (y, finite, every quantity physical), as
+        # "command_blown_up" (lgw.sim.results); theta = 0 on the interpolant between y and
+        # itself returns y exactly
+        S[BLOWN] = X[XBLOWN]
+        for j in range(NY):  # noqa: F821
+            yn[j] = y[j]
+            k1n[j] = k1[j]
+        return STOP_INSIDE, 0.0  # noqa: F821
     has_landed = S[LANDED] != 0.0
     dry = S[DRY] != 0.0
     # dry mass: first th with m(th) <= m_dry, bisection on the Hermite interpolant
@@ -211,8 +251,9 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
         # metrics until the outcome (landing or dry mass): command at the step's left node
         sat = False
         for ax in range(3):
-            S[PK + ax] = max(S[PK + ax], abs(XL[ax]))
-            S[PKU + ax] = max(S[PKU + ax], abs(XL[3 + ax]))
+            # the left node and every stage evaluation of the step (new node included)
+            S[PK + ax] = max(S[PK + ax], abs(XL[ax]), X[XPK + ax])
+            S[PKU + ax] = max(S[PKU + ax], abs(XL[3 + ax]), X[XPKU + ax])
             if XL[ax] != XL[3 + ax]:
                 sat = True
         rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
@@ -261,15 +302,15 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
             S[ZMIN] = zn
         if zn < 0.0:
             S[GROUND] = 1.0
-        if has_landed:  # the command at the landing node counts too
-            for ax in range(3):
-                S[PK + ax] = max(S[PK + ax], abs(X[ax]))
-                S[PKU + ax] = max(S[PKU + ax], abs(X[3 + ax]))
     if dry_now:
         S[DRY] = 1.0
         if stop_landing:  # out of propellant: the case ends at th = thd
             return STOP_INSIDE, thd  # noqa: F821
     if has_landed and stop_landing:
+        if yn[6] < m_dry and not ended:
+            # landed inside the step, and the node beyond is below the dry mass: end at the
+            # landing itself (the end state is the landed vehicle, never below m_dry)
+            return STOP_INSIDE, frac  # noqa: F821
         return STOP_AT_NODE, thd  # noqa: F821
     return CONTINUE, thd  # noqa: F821
 
@@ -277,13 +318,14 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
 def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     r0, v0, m0, dcoef, domega, dphase = C
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
-     stop_landing, m_dry) = Q
+     stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh) = R
+     ts1x, ts2x, fexh, blown) = R
     has_landed = S[LANDED] != 0.0
     dry = S[DRY] != 0.0
     landed[i] = has_landed
     fexh[i] = dry
+    blown[i] = S[BLOWN]  # 0, 1 or 2 (lgw.sim.mars.batch turns it into flags)
     if dry and stop_landing and not has_landed:
         y[6] = m_dry  # the case stopped at the crossing: the end state has exactly m_dry
     t_land[i] = S[TLAND]
@@ -307,7 +349,8 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
 
 HOOKS = (sys_init, sys_rhs, sys_start, sys_step, sys_finish)
 SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "ZMIN": ZMIN,
-         "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND}
+         "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND, "BLOWN": BLOWN,
+         "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN}
 
 
 def hooks_source() -> str:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 from lgw.sim.mars.batch import (
+    BLOWUP_ACCEL,
     LAND_TOL,
     BatchResult,
     _check_states,
@@ -40,7 +41,7 @@ class ClosedLoopRHS:
     def __init__(self, gains: Gains, *, law: str = "corrected", dist: DisturbanceSpec,
                  case: int = 0, thrust_limit: float | None = None, limit: str = "axis",
                  drag: str = "physical", guidance_drag: str | None = None,
-                 isp: float = ISP) -> None:
+                 isp: float = ISP, m0: float | None = None) -> None:
         self.P = get_law(law).param_values(gains)
         self.law = numpy_law(law)
         self.s2 = surfaces_numeric()[1]
@@ -52,6 +53,16 @@ class ClosedLoopRHS:
         self.drag = drag
         self.gdrag = drag if guidance_drag is None else guidance_drag
         self.isp = isp
+        # as lgw.sim.mars.batch: a command above BLOWUP_ACCEL m0 is blown up (None: no check)
+        self.blow_force = None if m0 is None else BLOWUP_ACCEL * float(m0)
+
+    def blown(self, y: np.ndarray, f: np.ndarray | None = None) -> bool:
+        """The command at y (7,) is blown up: not finite, above BLOWUP_ACCEL m0, or asked at
+        a mass <= 0 (lgw.sim.mars.batch.BLOWUP_ACCEL)."""
+        if self.blow_force is None:
+            return False
+        f = self.force(y)[0] if f is None else f
+        return not (float(np.linalg.norm(f)) <= self.blow_force and y[6] > 0)
 
     def s2_of(self, y: np.ndarray) -> np.ndarray:
         g = self.g
@@ -74,6 +85,12 @@ class ClosedLoopRHS:
     def __call__(self, t: float, y: np.ndarray, ap_extra: np.ndarray | None = None
                  ) -> np.ndarray:
         f, fu, a = self._command(y)
+        if self.blown(y, f):
+            # a finite stand-in, no thrust (as the batch kernel): the solver either retries a
+            # smaller step or meets the "blown" event, which ends the case where the command on
+            # the solution reaches the threshold; this value is never part of a result
+            f = np.zeros(3)
+            fu = np.full(3, np.nan)  # never equal to f: no at-rest shortcut below
         ap = self.dist.accel(t, self.s2_of(y) if self.dist.kind == "worst" else None, self.case)
         if ap_extra is not None:
             ap = ap + ap_extra
@@ -97,21 +114,26 @@ class _NonFinite(Exception):  # noqa: N818  (control flow, not an error)
         self.y = y
 
 
-def _nonfinite_row(rhs: ClosedLoopRHS, y0: np.ndarray, e: _NonFinite, eps: float,
-                   landed0: bool) -> dict:
-    """What is known when the derivative became non-finite: the state there and the t = 0
-    band entries (solve_ivp cannot return a partial solution; see ``simulate_reference``)."""
+def _start_row(rhs: ClosedLoopRHS, y0: np.ndarray, eps: float, landed0: bool, *,
+               t: float = 0.0, y: np.ndarray | None = None, nonfinite: bool = False,
+               blown: bool = False) -> dict:
+    """A case that ends without a solution: landed or blown up at t = 0, or a derivative
+    that became non-finite at (t, y) (solve_ivp cannot return a partial solution; see
+    ``simulate_reference``): the state there and the t = 0 band entries.  Peaks: the
+    as simulate_batch's, 0 (no step was flown)."""
+    y = y0 if y is None else y
     s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
     tf = np.where(np.abs(s0) <= eps, 0.0, np.nan)
     nan3 = np.full(3, np.nan)
     return {"landed": landed0, "landing_time": 0.0 if landed0 else np.nan,
             "r_land": y0[:3] if landed0 else nan3, "v_land": y0[3:6] if landed0 else nan3,
-            "fuel": y0[6] - e.y[6], "fuel_exhausted": False,
+            "fuel": 0.0 if landed0 else y0[6] - y[6], "fuel_exhausted": False,
             "peak_thrust": np.zeros(3), "peak_thrust_unsat": np.zeros(3),
-            "time_saturated": 0.0, "min_altitude": float(min(y0[2], e.y[2])),
+            "time_saturated": 0.0, "min_altitude": float(min(y0[2], y[2])),
             "ground_contact": bool(y0[2] < 0), "t_s1": tf[:3], "t_s2": tf[3:],
-            "t_s1_last_exit": nan3, "t_s2_last_exit": nan3, "nonfinite": True,
-            "t_end": float(e.t), "y_end": e.y, "steps": 0, "step_limit": False, "sol": None}
+            "t_s1_last_exit": nan3, "t_s2_last_exit": nan3, "nonfinite": nonfinite,
+            "t_end": float(t), "y_end": y, "steps": 0, "step_limit": False,
+            "blown_up": blown, "sol": None}
 
 
 def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
@@ -144,48 +166,72 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
     dry.terminal = stop == "landing"  # as in simulate_batch: "t_max" integrates past it
     dry.direction = -1
 
+    def blown(t, y):  # > 0 while the command is a thrust (lgw.sim.mars.batch.BLOWUP_ACCEL)
+        f = rhs.force(y)[0]
+        return -1.0 if rhs.blown(y, f) else rhs.blow_force - float(np.linalg.norm(f))
+    blown.terminal = True  # the case cannot go on (as in simulate_batch)
+    blown.direction = -1
+
     events = ([landing] + [band(j, -1) for j in range(6)] + [band(j, 1) for j in range(6)]
-              + [dry])
+              + [dry, blown])
     landed0 = bool(landing(0.0, y0) <= 0)
+    if landed0 and stop == "landing":  # as simulate_batch: landed at t = 0, nothing to fly
+        return _start_row(rhs, y0, eps, True)
+    if rhs.blown(y0):  # the command at t = 0 cannot be flown (nonfinite too if it is not finite)
+        return _start_row(rhs, y0, eps, landed0, blown=True,
+                          nonfinite=not np.all(np.isfinite(rhs.force(y0)[0])))
     try:
         with np.errstate(divide="ignore", invalid="ignore"):
             sol = solve_ivp(f, (0.0, t_max), y0, method=method, rtol=rtol, atol=atol,
                             max_step=max_step, events=events, dense_output=True)
     except _NonFinite as e:
-        return _nonfinite_row(rhs, y0, e, eps, landed0)
+        return _start_row(rhs, y0, eps, landed0, t=e.t, y=e.y, nonfinite=True)
     s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
     t_dry = sol.t_events[13][0] if len(sol.t_events[13]) else np.inf
+    t_blow = sol.t_events[14][0] if len(sol.t_events[14]) else np.inf
     tl = 0.0 if landed0 else (sol.t_events[0][0] if len(sol.t_events[0]) else np.nan)
-    if not tl <= t_dry:  # ran dry first: not landed
+    if not tl <= min(t_dry, t_blow):  # ran dry or blew up first: not landed
         tl = np.nan
+    if t_blow < t_dry and np.isnan(tl):  # as simulate_batch: the dry crossing after it is moot
+        t_dry = np.inf
     tf = np.array([0.0 if abs(s0[j]) <= eps else
                    (sol.t_events[1 + j][0] if len(sol.t_events[1 + j]) else np.nan)
                    for j in range(6)])
     tx = np.array([sol.t_events[7 + j][-1] if len(sol.t_events[7 + j]) else np.nan
                    for j in range(6)])
     exhausted = bool(np.isfinite(t_dry))
+    blown_up = bool(np.isfinite(t_blow))
     nonfinite = not np.all(np.isfinite(sol.y)) or sol.status == -1
     t_end = float(sol.t[-1])
-    t_metric = min(t_end, t_dry) if np.isnan(tl) else tl
-    grid = np.union1d(np.arange(0.0, t_metric, METRIC_GRID), sol.t[sol.t <= t_metric])
+    t_metric = min(t_end, t_dry, t_blow) if np.isnan(tl) else tl
+    # blown up: up to the located crossing, not at it (the root finder may put it an ulp past
+    # the threshold, a command that is no thrust)
+    nodes = sol.t[sol.t < t_metric] if blown_up and np.isnan(tl) else sol.t[sol.t <= t_metric]
+    grid = np.union1d(np.arange(0.0, t_metric, METRIC_GRID), nodes)
     ys = sol.sol(grid)
     f_sat, f_uns = rhs.force(ys.T)  # (K, 3) each
     sat = np.any(f_sat != f_uns, axis=1)
     dts = np.diff(np.append(grid, t_metric))
     y_land = sol.sol(tl) if np.isfinite(tl) else np.full(7, np.nan)
-    y_end = sol.y[:, -1]
+    y_end = sol.y[:, -1].copy()
+    if exhausted and stop == "landing" and np.isnan(tl):
+        y_end[6] = m_dry  # the case ended at the located crossing: exactly m_dry (as batch)
     ground = bool(np.any(ys[2] < 0))
     return {"landed": bool(np.isfinite(tl)), "landing_time": tl, "r_land": y_land[:3],
             "v_land": y_land[3:6],
+            # out of propellant: all of it, m0 - m_dry (the root finder's m there is m_dry
+            # to its tolerance, which may put it an ulp beyond the load)
             "fuel": y0[6] - (y_land[6] if np.isfinite(tl) else
-                             sol.sol(t_dry)[6] if exhausted else y_end[6]),
+                             m_dry if exhausted else sol.sol(t_blow)[6] if blown_up
+                             else y_end[6]),
             "fuel_exhausted": exhausted,
             "peak_thrust": np.max(np.abs(f_sat), axis=0),
             "peak_thrust_unsat": np.max(np.abs(f_uns), axis=0),
             "time_saturated": float(np.sum(dts[sat])), "min_altitude": float(ys[2].min()),
             "ground_contact": ground, "t_s1": tf[:3], "t_s2": tf[3:], "t_s1_last_exit": tx[:3],
             "t_s2_last_exit": tx[3:], "nonfinite": bool(nonfinite), "t_end": t_end,
-            "y_end": y_end, "steps": len(sol.t) - 1, "step_limit": False, "sol": sol}
+            "y_end": y_end, "steps": len(sol.t) - 1, "step_limit": False,
+            "blown_up": blown_up, "sol": sol}
 
 
 def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
@@ -242,7 +288,8 @@ def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Ga
                    transient=True)
     for i in it:
         rhs = ClosedLoopRHS(gains, law=law, dist=dist_spec, case=i, thrust_limit=thrust_limit,
-                            limit=limit, drag=drag, guidance_drag=guidance_drag, isp=isp)
+                            limit=limit, drag=drag, guidance_drag=guidance_drag, isp=isp,
+                            m0=m0[i])
         y0 = np.concatenate([r0[i], v0[i], [m0[i]]])
         rows.append(_one(rhs, y0, t_max=t_max, eps=eps, land_tol=land_tol, stop=stop,
                          rtol=rtol, atol=atol, max_step=max_step, method=method,

@@ -284,5 +284,5 @@ def test_fuel_never_exceeds_the_load(method: str) -> None:
     m0 = np.array([M_DRY + 3.0, M0])
     b = simulate_batch(r0, v0, m0, G, method=method)
     assert b.fuel_exhausted[0] and b.fuel[0] == 3.0 and b.y_end[0, 6] == M_DRY
-    assert b.fuel_exhausted[1] or b.nonfinite[1] or b.landed[1]
+    assert b.fuel_exhausted[1] or b.nonfinite[1] or b.landed[1] or b.blown_up[1]
     assert np.all(b.fuel <= m0 - M_DRY) and np.all(b.y_end[:, 6] >= M_DRY)
