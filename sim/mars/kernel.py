@@ -251,9 +251,13 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
         # metrics until the outcome (landing or dry mass): command at the step's left node
         sat = False
         for ax in range(3):
-            # the left node and every stage evaluation of the step (new node included)
-            S[PK + ax] = max(S[PK + ax], abs(XL[ax]), X[XPK + ax])
-            S[PKU + ax] = max(S[PKU + ax], abs(XL[3 + ax]), X[XPKU + ax])
+            # peaks at the left node (states on the trajectory); every stage evaluation is
+            # still checked for a blown-up command (X[XBLOWN]).  Stage maxima (X[XPK],
+            # X[XPKU]) are kept per attempt but not reported: at RK4's trial states near an
+            # s1 = 0 crossing the corrected law's singular term spikes, and the tuner's
+            # certificate (lgw.tuning.mars.design.limit_measure) is defined on the nodes
+            S[PK + ax] = max(S[PK + ax], abs(XL[ax]))
+            S[PKU + ax] = max(S[PKU + ax], abs(XL[3 + ax]))
             if XL[ax] != XL[3 + ax]:
                 sat = True
         rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)

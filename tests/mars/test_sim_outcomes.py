@@ -100,10 +100,11 @@ def test_all_zero_state_lands_at_once_in_every_mode() -> None:
         _physical(res)
 
 
-def test_peaks_include_every_stage_evaluation() -> None:
-    """The peak is the max of |F| over every RK4 stage evaluation up to landing, not only the
-    nodes: recomputed independently from the recorded nodes with the numpy law and plant
-    (lgw.sim.mars.reference.ClosedLoopRHS), stage by stage."""
+def test_peaks_are_the_node_maxima_not_the_stages() -> None:
+    """The peak is the max of |F| over the step nodes up to landing (the states on the
+    trajectory), recomputed independently from the recorded nodes with the numpy law and plant
+    (lgw.sim.mars.reference.ClosedLoopRHS); the RK4 stages of this run go higher, so the test
+    tells the two definitions apart."""
     dt = 0.05
     res = simulate_batch(R0[None], V0[None], [M0], G, record=True, dt=dt)
     assert res.landed[0]
@@ -120,8 +121,10 @@ def test_peaks_include_every_stage_evaluation() -> None:
     stages += [y2, y3, y[:-1] + dt * k3]
     peak = np.max(np.abs(np.concatenate([rhs.force(s)[0] for s in stages])), axis=0)
     node = np.max(np.abs(rhs.force(y)[0]), axis=0)
-    np.testing.assert_allclose(res.peak_thrust[0], peak, rtol=1e-9)
-    assert np.any(peak > node * (1 + 1e-6))  # the stages matter here: the test can fail
+    # nodes up to the step before the landing step (the landing step's left node included)
+    node = np.max(np.abs(rhs.force(y[:-1])[0]), axis=0)
+    np.testing.assert_allclose(res.peak_thrust[0], node, rtol=1e-9)
+    assert np.any(peak > node * (1 + 1e-6))  # the stages differ here: the test can fail
 
 
 def test_times_and_precedence() -> None:
