@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 from lgw.tuning.eros.options import resolve_gains
-from lgw.tuning.options import gains_option
+from lgw.tuning.options import SEED, Integer, gains_option
 
 
 @click.command("eros")
@@ -18,9 +18,10 @@ from lgw.tuning.options import gains_option
                    "make the figures (the six variants' tracking errors, control and "
                    "chattering; the campaign's reaching and tracked times), embedded in "
                    "report.html and written beside the report")
-@click.option("--cases", type=int, default=100, show_default=True,
+@click.option("--cases", type=Integer(1, 10**5, "cases"), default=100, show_default=True,
               help="Monte Carlo cases for the simulation claims")
-@click.option("--seed", type=int, default=1, show_default=True)
+@click.option("--seed", type=SEED, default=1, show_default=True,
+              help="random seed of the campaign (numpy SeedSequence)")
 def command(gains_path: Path | None, out_dir: Path, with_sim: bool, cases: int,
             seed: int) -> None:
     """Derive and check every claim of seed 002 and write the report for a gain set."""

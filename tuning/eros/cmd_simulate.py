@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 from lgw.tuning.eros.options import resolve_gains
 from lgw.tuning.io import json_document
-from lgw.tuning.options import gains_option
+from lgw.tuning.options import SEED, Integer, Number, choice, gains_option
 from rich.console import Console
 from rich.table import Table
 
@@ -20,18 +20,26 @@ COLUMNS = (("t_reach_max", "reach s"), ("t_track_all", "tracked s"), ("iae", "IA
 
 @click.command("eros")
 @gains_option
-@click.option("--law", default="all", show_default=True,
+@click.option("--law", type=choice(("pdsmc-sign", "pdsmc-tanh", "ftsmc-sign", "ftsmc-tanh",
+                                    "fuzzy-sign", "fuzzy-tanh", "all")),
+              default="all", show_default=True,
               help="pdsmc-sign, pdsmc-tanh, ftsmc-sign, ftsmc-tanh, fuzzy-sign, fuzzy-tanh or all")
-@click.option("--cases", type=int, default=0, show_default=True,
+@click.option("--cases", type=Integer(0, 10**6, "cases"), default=0, show_default=True,
               help="Monte Carlo cases over the initial-offset envelope (0: the paper's scenario)")
-@click.option("--seed", type=int, default=1, show_default=True)
-@click.option("--t-final", type=float, default=15.0, show_default=True, help="s")
-@click.option("--dt", type=float, default=0.01, show_default=True, help="sampling time, s")
-@click.option("--gravity", default="two-point", show_default=True,
+@click.option("--seed", type=SEED, default=1, show_default=True,
+              help="random seed (numpy SeedSequence); integer in [0, 2^64 - 1]")
+@click.option("--t-final", type=Number(0, 1e5, lo_open=True, unit="s"), default=15.0,
+              show_default=True, help="simulated time (s)")
+@click.option("--dt", type=Number(0, 10, lo_open=True, unit="s"), default=0.01,
+              show_default=True, help="sampling time of the controller (s)")
+@click.option("--gravity", type=choice(("two-point", "polyhedron", "none")),
+              default="two-point", show_default=True,
               help="plant gravity: two-point, polyhedron (slow: single cases) or none")
-@click.option("--disturbance", default="known", show_default=True,
+@click.option("--disturbance", type=choice(("known", "unknown", "none")), default="known",
+              show_default=True,
               help="known (D in u_eq, (14)), unknown (bounded, not in u_eq) or none")
-@click.option("--reference", default="exact", show_default=True,
+@click.option("--reference", type=choice(("exact", "printed")), default="exact",
+              show_default=True,
               help="cubic coefficients: exact or printed")
 @click.option("--json", "as_json", is_flag=True, help="print the rows as JSON")
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),

@@ -18,7 +18,7 @@ import click
 import numpy as np
 from lgw.theory.errors import ParameterError
 from lgw.tuning.lunar.options import resolve_gains
-from lgw.tuning.options import gains_option
+from lgw.tuning.options import SEED, Integer, Number, choice, gains_option
 
 
 def random_cases(n: int, seed: int):
@@ -34,22 +34,28 @@ def random_cases(n: int, seed: int):
 
 @click.command("lunar")
 @gains_option
-@click.option("--cases", type=int, default=0, help="number of random cases (0: Section 5)")
-@click.option("--seed", type=int, default=0, show_default=True)
-@click.option("--pointing", type=click.Choice(["coupled", "ideal"]), default="coupled",
+@click.option("--cases", type=Integer(0, 10**6, "cases"), default=0, show_default=True,
+              help="number of random cases (0: the Section 5 case)")
+@click.option("--seed", type=SEED, default=0, show_default=True,
+              help="random seed (numpy SeedSequence); integer in [0, 2^64 - 1]")
+@click.option("--pointing", type=choice(("coupled", "ideal")), default="coupled",
               show_default=True, help="thrust along the simulated body axis, or along the "
               "command (orbit loop alone)")
-@click.option("--failure", type=click.Choice(["atan", "step", "none"]), default="atan",
+@click.option("--failure", type=choice(("atan", "step", "none")), default="atan",
               show_default=True, help="(26) as printed, a step to 70%, or no failure")
-@click.option("--t-fail", type=float, default=None, help="failure time, s (default t_f/2)")
-@click.option("--ta", type=float, default=0.7, show_default=True,
+@click.option("--t-fail", type=Number(0, unit="s"), default=None,
+              help="failure time (s) [default: t_f/2]")
+@click.option("--ta", type=Number(0, 1, unit="fraction"), default=0.7, show_default=True,
               help="thrust fraction left after the failure, T_a of (26)")
-@click.option("--sat-reading", type=click.Choice(["commanded", "nominal"]),
+@click.option("--sat-reading", type=choice(("commanded", "nominal")),
               default="commanded", show_default=True, help="the T of (24)")
-@click.option("--cmd-wn", type=float, default=2.0, show_default=True,
+@click.option("--cmd-wn", type=Number(0, 1e3, lo_open=True, unit="rad/s"), default=2.0,
+              show_default=True,
               help="natural frequency of the desired-attitude command filter, rad/s")
-@click.option("--dt", type=float, default=None, help="RK4 step, s (default 0.05)")
-@click.option("--t-end", type=float, default=None, help="end time, s (default t_f)")
+@click.option("--dt", type=Number(0, 1, lo_open=True, unit="s"), default=None,
+              help="RK4 step (s) [default: 0.05]")
+@click.option("--t-end", type=Number(0, 1e5, lo_open=True, unit="s"), default=None,
+              help="end time (s) [default: t_f of the reference]")
 @click.option("--json", "as_json", is_flag=True, help="print the per-case summaries as JSON")
 @click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
               default=None, help="write summary.json and section5.png there")
