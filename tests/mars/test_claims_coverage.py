@@ -10,8 +10,9 @@ from lgw.theory.mars.claims import all_claims
 from lgw.theory.mars.coverage import coverage
 from lgw.theory.mars.gains import default_gains
 
-SEED = next(iter(sorted(Path("/work/shared/seeds").glob("000_*.txt"))), None) \
-    if Path("/work/shared/seeds").exists() else None
+# the papers sit in shared/ beside the repository (../shared/seeds from its root)
+SEEDS = Path(__file__).resolve().parents[3] / "shared" / "seeds"
+SEED = next(iter(sorted(SEEDS.glob("000_*.txt"))), None) if SEEDS.exists() else None
 
 
 def test_no_row_is_empty_and_every_claim_exists():
