@@ -60,6 +60,11 @@ from lgw.theory.falsify import Budget, Problem, falsify
 from lgw.theory.mars import searches as S
 from lgw.theory.mars.bounds import axis_bounds, landing_time_bound, neighborhood, reaching_time
 from lgw.theory.mars.gains import Gains, gains_to_toml
+from lgw.theory.mars.mss import surfaces_numeric
+from lgw.theory.mars.parameters import (
+    M0,  # Table I mass (the bounds do not depend on it: the law divides it out)
+)
+from lgw.theory.symbolic import np_sig
 
 # Measured chattering floors (docs/sim.md "Chattering floor and eps", Table I, RK4):
 # max |s2| = 9.0e-3 m/s at dt = 0.05 s, fitted as 0.85 dt^1.5 over dt in [0.01, 0.2];
@@ -68,7 +73,6 @@ from lgw.theory.mars.gains import Gains, gains_to_toml
 S2_FLOOR_COEF = 0.85
 S1_FLOOR_COEF = 0.22
 S1_FLOOR_EXP = 2.46
-M0 = 1905.0  # kg, Table III mass (irrelevant to the bounds: the law divides it out)
 
 CLAIMS = {
     "reaching-16": "(16),(18)",
@@ -151,18 +155,15 @@ def sample_states(n: int, seed: int) -> tuple[np.ndarray, np.ndarray, np.ndarray
     return comp(-6, 5, False), comp(-6, 3, True), np.full(n, M0)
 
 
-def sig(x: np.ndarray, p: float) -> np.ndarray:
-    return np.sign(x) * np.abs(x) ** p
-
-
 def surface2(r: np.ndarray, v: np.ndarray, g: Gains) -> np.ndarray:
-    """s2 of seed 000 (21), per axis (last dimension 3): v + beta1 sig(r,q1) + beta2 sig(r,q2)."""
-    return v + g.beta1 * sig(r, g.q1) + g.beta2 * sig(r, g.q2)
+    """s2 of seed 000 (21), per axis (last dimension 3), from the SymPy surface
+    (``lgw.theory.mars.mss.surfaces_numeric``)."""
+    return surfaces_numeric()[1](r, v, g.beta1, g.beta2, g.q1, g.q2)
 
 
 def on_surface2(r0: np.ndarray, g: Gains) -> np.ndarray:
     """The velocity that puts the state on s2 = 0 (21): then s1 obeys (16) alone."""
-    return -(g.beta1 * sig(r0, g.q1) + g.beta2 * sig(r0, g.q2))
+    return -(g.beta1 * np_sig(r0, g.q1) + g.beta2 * np_sig(r0, g.q2))
 
 
 def unresolved(r: np.ndarray, v: np.ndarray, g: Gains, a_max: float, dt: float) -> np.ndarray:
