@@ -80,12 +80,17 @@ class StoppingOptions:
     stop="landing": at landing (|r| <= land_tol[0] m and |v| <= land_tol[1] m/s) or when the
       mass reaches m_dry (kg); stop="t_max": integrate to t_max (s) regardless, recording
       which came first.
+    blowup_accel (m/s^2, > 0, may be inf; None: the system's default): a commanded
+      acceleration above it ends the case as a blown-up command.  inf keeps only the
+      non-finite test: for checks of the mathematical bounds with unlimited thrust, where a
+      huge but finite command is part of the closed loop being checked.
     """
 
     stop: str = "landing"
     t_max: float
     land_tol: tuple[float, float]
     m_dry: float
+    blowup_accel: float | None = None
 
     def __post_init__(self) -> None:
         _one_of("stop", self.stop, STOP_MODES)
@@ -96,6 +101,9 @@ class StoppingOptions:
         positive("land_tol[1]", self.land_tol[1], "m/s")
         object.__setattr__(self, "land_tol", (float(self.land_tol[0]), float(self.land_tol[1])))
         positive("m_dry", self.m_dry, "kg")
+        if self.blowup_accel is not None and not (float(self.blowup_accel) > 0):
+            raise ParameterError("blowup_accel", self.blowup_accel, "must be > 0 (m/s^2; inf "
+                                 "allowed) or None")
 
     def check_masses(self, m0: np.ndarray) -> None:
         """The dry mass must be below every initial mass."""

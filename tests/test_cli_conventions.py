@@ -86,7 +86,9 @@ def test_every_choice_rejects_a_wrong_value_in_lgw_style(tmp_path, verb, system,
     args = [verb, system, opt, "no-such-value"]
     if verb == "tune":
         args += ["--tf", "60", "--thrust-max", "50000"]
-    args += ["--out", str(out)] if verb != "verify" else []
+    cmd = next(c for v, s, c in COMMANDS if (v, s) == (verb, system))
+    takes_out = any("--out" in p.opts for p in cmd.params)
+    args += ["--out", str(out)] if takes_out else []
     r = run_lgw(args)
     assert_one_error(r)
     assert opt in r.stderr and "no-such-value" in r.stderr

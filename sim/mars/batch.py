@@ -293,7 +293,8 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
                    chunk: int = DEFAULT_CHUNK, parallel: bool = True,
                    m_dry: float = M_DRY, method: str = "rk4", rtol: float = DOPRI_RTOL,
                    atol: float = DOPRI_ATOL, max_step: float = DOPRI_MAX_STEP,
-                   max_steps: int = DOPRI_MAX_STEPS) -> BatchResult:
+                   max_steps: int = DOPRI_MAX_STEPS,
+                   blowup_accel: float | None = None) -> BatchResult:
     """Fly N cases of seed 000's closed loop with RK4 or dopri5 (see the module docstring).
 
     The keyword front of ``simulate`` (which takes option objects): it validates the keywords,
@@ -323,6 +324,9 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
       error control rtol, atol as scipy's RK45; dt is the first step, max_step caps the step;
       a case that needs more than max_steps attempts is flagged ``step_limit`` and stops there).
       ``steps`` holds the accepted steps per case.  record=True needs method="rk4".
+    blowup_accel: a commanded acceleration above it (m/s^2) ends the case as
+      ``command_blown_up`` (default ``BLOWUP_ACCEL``; inf: only a non-finite command does, as
+      the bound checks with unlimited thrust need).
     """
     r0, v0, m0 = _check_states(r0, v0, m0)
     m_dry = check_m_dry(m_dry, m0)
@@ -332,7 +336,7 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
     integration = IntegrationOptions(method=method, dt=dt, rtol=rtol, atol=atol,
                                      max_step=max_step, max_steps=max_steps, record=record)
     stopping = StoppingOptions(stop=stop, t_max=float(t_max), land_tol=tuple(land_tol),
-                               m_dry=m_dry)
+                               m_dry=m_dry, blowup_accel=blowup_accel)
     limits = LimitOptions(thrust_limit=thrust_limit, kind=limit)
     n = r0.shape[0]
     if dist_spec is None:
@@ -389,7 +393,8 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
          AREA.astype(float), DRAG_CODE[drag], gkind, exhaust_velocity(isp), limits.fmax,
          limits.code, dkind, np.asarray(dist.amplitude, float), float(eps),
          stopping.land_tol[0], stopping.land_tol[1], stopping.stop == "landing",
-         float(stopping.m_dry), BLOWUP_ACCEL)
+         float(stopping.m_dry),
+         BLOWUP_ACCEL if stopping.blowup_accel is None else float(stopping.blowup_accel))
 
     out = {k: np.empty((n, 3)) for k in ("r_land", "v_land", "peak_thrust", "peak_thrust_unsat",
                                          "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit")}

@@ -65,7 +65,8 @@ def test_claims_invariants():
     assert by["V2dot-printed"] == "refuted" and by["V2dot-corrected"] == "proved"
     assert by["T2-printed"] == "refuted" and by["T2-corrected"] == "proved-given"
     assert by["T1"] == "proved-given" and by["exact-bound"] == "proved-given"
-    assert by["landing-time"] == "checked" and by["T3"] == "unproven"
+    # the paper's max{T1, T2}: refuted by the full-domain search (the sound T1 + T2 is proved)
+    assert by["landing-time"] == "refuted" and by["T3"] == "unproven"
     assert by["theorem1"] == "refuted" and by["theta-effect"] == "refuted"
     for eq in ("(18)", "(26)", "(31)", "(40)", "(45)", "(32)", "(3)", "(6)", "Remark 1"):
         assert any(eq in c.equations for c in claims), eq

@@ -259,7 +259,7 @@ class Campaign:
         res = simulate_batch(r0, v0, np.full(len(r0), M0), g, drag="none", dt=self.dt,
                              eps=self.eps, t_max=t_max, stop="t_max", disturbance=disturbance,
                              dist_amplitude=g.disturbance.a_max, seed=self.seed,
-                             case_offset=self._offset, record=True)
+                             case_offset=self._offset, record=True, blowup_accel=np.inf)
         tr = res.trajectory
         a_max = 0.0 if disturbance == "none" else g.disturbance.a_max
         with np.errstate(all="ignore"):
@@ -280,7 +280,7 @@ class Campaign:
             ad = simulate_batch(r0[idx], v0[idx], np.full(len(idx), M0), self.g, drag="none",
                                 dt=self.dt, eps=self.eps, t_max=t_max, stop="t_max",
                                 method="dopri5", max_step=self.dt, seed=self.seed,
-                                case_offset=self._offset)
+                                case_offset=self._offset, blowup_accel=np.inf)
             carried = ~ad.nonfinite & ~ad.step_limit
             for arr, new in zip(out, (ad.t_s1, ad.t_s2, ad.t_s1_last_exit, ad.y_end),
                                 strict=True):
