@@ -35,6 +35,7 @@ def command(gains_path: Path | None, out_dir: Path, with_scenario: bool) -> None
         scenario, sec, measured = run_scenario()
         sections.append(sec)
         figs = sec.figures  # embedded in report.html, written beside the report
+    sections.append(_no_tuner_section(g))
     claims = all_claims(scenario)
     cov = coverage_rows()
     bounds, note = bounds_table(g, measured)
@@ -52,3 +53,23 @@ def command(gains_path: Path | None, out_dir: Path, with_scenario: bool) -> None
         counts[c.verdict] = counts.get(c.verdict, 0) + 1
     click.echo(f"wrote {', '.join([str(out_dir / n) for n in docs] + written)}")
     click.echo("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
+
+
+def _no_tuner_section(g):
+    """Why ``lgw tune lunar`` is not offered (issue 15 asks the report to say so)."""
+    import numpy as np
+    from lgw.theory.lunar.parameters import M0, T_MAX, T_NOMINAL
+    from lgw.theory.report import Section
+
+    f2max = float(np.max(np.linalg.eigvalsh(np.asarray(g.orbit.F2, float))))
+    ev = (T_MAX - T_NOMINAL) / (M0 * f2max)  # m/s: the error at which m F2 e_v uses the margin
+    return Section("Why there is no lgw tune lunar", (
+        "The natural tuning problem (gains that minimise the transient bound (21) with the orbit "
+        "thrust never saturating before the failure) has no feasible point near the paper's "
+        f"gains: the orbit command's feedback m F2 e_v uses the whole margin T_max - T_d = "
+        f"{T_MAX - T_NOMINAL:.0f} N above the nominal thrust once |e_v| exceeds "
+        f"(T_max - T_d) / (m0 lambda_max(F2)) = {ev:.3g} m/s with these gains (m0 = {M0:.0f} kg, "
+        f"lambda_max(F2) = {f2max:.3g} 1/s), well below the paper's own initial velocity error "
+        "[2, 3, 5] m/s.  A tuner needs a saturation-aware transient bound first; (21) assumes no "
+        "saturation.",), (), ())
+
