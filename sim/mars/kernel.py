@@ -144,7 +144,9 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     # that made it is never accepted (sys_step ends the case at its start), so the stage gets a
     # finite stand-in, no thrust, instead of an inf that would hide it as a non-finite state;
     # dopri5 may instead reject the attempt and retry a smaller step
-    bad_cmd = not (fn <= blow_acc * m0[i]) or not (m > 0.0)
+    # (with blow_acc = inf, the bound checks' unlimited-thrust loop, only a non-finite command
+    # counts: there the mass is a bookkeeping state the law divides out, and may run past 0)
+    bad_cmd = not (fn <= blow_acc * m0[i]) or (not (m > 0.0) and blow_acc < math.inf)
     if kr <= 1:  # the t = 0 call or the first stage of a step attempt
         for j in range(6):
             X[XPK + j] = 0.0
