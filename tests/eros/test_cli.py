@@ -81,12 +81,12 @@ def test_report_no_sim_writes_every_format(tmp_path):
     assert r.returncode == 0, r.stderr
     for name in ("report.md", "report.tex", "report.html", "claims.json"):
         assert (out / name).stat().st_size > 1000
-    claims = json.loads((out / "claims.json").read_text())
+    claims = json.loads((out / "claims.json").read_text())["claims"]
     md = (out / "report.md").read_text()
     for c in claims:  # every claim in the verdict table with its computed verdict
-        assert f"[{c['id']}](#{c['id']})" in md
+        assert f"[{c['id']}](#claim-{c['id']})" in md
         assert c["verdict"] in ("proved", "proved-given", "checked", "unproven", "refuted")
-    assert "Coverage of seed 002" in md
+    assert "## Coverage of the paper" in md
 
 
 def test_tune_infeasible_exit_3_writes_nothing(tmp_path):

@@ -44,9 +44,3 @@ COVERAGE: tuple[tuple[str, str, tuple[str, ...], str], ...] = (
      "(lgw simulate eros --t-final 8000)"),
     ("PD-SMC", "the classic PD sliding mode", ("pd-smc",), ""),
 )
-
-
-def rows() -> tuple[tuple[str, str, str], ...]:
-    """(item, what, claims or the reason) for the report's table."""
-    return tuple((item, what, ", ".join(ids) + (f" ({note})" if ids and note else note))
-                 for item, what, ids, note in COVERAGE)

@@ -1,24 +1,15 @@
-"""Seed 002's report frame for the shared renderer (``lgw.theory.report``).
-
-The renderer's current signature reads the attributes of ``lgw.theory.claims.Claim`` (a verdict
-string, ``evidence`` text, steps with ``method`` and ``detail``); seed 002's claims are
-``lgw.theory.evidence.Claim`` objects whose verdicts are computed.  ``render_view`` presents one
-as the other without changing any verdict: every string is read off the evidence.
-"""
+"""Seed 002's report frame for the shared renderer (``lgw.theory.report``): title, gain rows,
+warnings, bound labels, references and the coverage table; the renderer takes the evidence
+claims directly."""
 
 from __future__ import annotations
 
-import inspect
-import json
 from collections.abc import Sequence
-from dataclasses import dataclass, field
-from typing import Any
 
 from lgw.theory import report as R
 from lgw.theory.eros import bounds as B
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros.coverage import COVERAGE
-from lgw.theory.eros.coverage import rows as coverage_rows
 from lgw.theory.eros.gains import Gains
 from lgw.theory.evidence import Claim
 from lgw.theory.report import ReportSpec, Section, fmt
@@ -47,44 +38,6 @@ BOUND_LABELS = (
     ("ts_ftsm", "(7) derived t_s", "s"), ("ts_ftsm_printed", "(7) as printed", "s"),
     ("t_pd", "PD surface: time to abs(e) <= TRACK_TOL", "s"),
 )
-
-
-@dataclass(frozen=True)
-class _StepView:
-    statement: str
-    status: str
-    method: str
-    detail: str
-
-
-@dataclass(frozen=True)
-class ClaimView:
-    """An evidence.Claim seen through the attributes the shared renderer reads."""
-
-    id: str
-    equations: str
-    title: str
-    paper: str
-    derived: str
-    law: str | None
-    verdict: str
-    evidence: str
-    steps: tuple[_StepView, ...]
-    remarks: tuple[_StepView, ...]
-    counterexample: dict[str, Any] | None
-    numbers: dict[str, Any] = field(default_factory=dict)
-
-
-def _step(s) -> _StepView:
-    return _StepView(s.statement, s.status, s.evidence.kind, s.evidence.summary())
-
-
-def render_view(c: Claim) -> ClaimView:
-    ce = c.counterexample
-    return ClaimView(c.id, c.equations, c.title, c.paper, c.derived, c.law, c.verdict_text(),
-                     f"scope {c.scope}; weakest step decides",
-                     tuple(_step(s) for s in c.steps), tuple(_step(s) for s in c.remarks),
-                     ce.to_dict() if ce else None, dict(c.to_dict()["numbers"]))
 
 
 def axis_bounds(g: Gains, e0=P.SCENARIO_OFFSET, ed0=P.SCENARIO_VOFFSET,
@@ -122,22 +75,14 @@ def report_spec(g: Gains, bounds: dict[str, dict[str, float]]) -> ReportSpec:
 
 def render_documents(claims: Sequence[Claim], spec: ReportSpec,
                      sections: Sequence[Section] = ()) -> dict[str, str]:
-    """report.md / .tex / .html and claims.json, through whichever renderer signature
-    ``lgw.theory.report`` has: the current one (claims.Claim attributes: ``render_view``, the
-    coverage as a section) or the evidence-native one with ``coverage=`` (CoverageRow)."""
+    """report.md / .tex / .html and claims.json (``lgw.theory.report.claims_json``, as for
+    every system), with the coverage table of ``lgw.theory.eros.coverage``."""
+    row = R.CoverageRow
+    cov = [row(item, what, ids) if ids else
+           row(item, what, (), note.removeprefix("not checkable, because "))
+           for item, what, ids, note in COVERAGE]
     fns = (("report.md", R.render_markdown), ("report.tex", R.render_latex),
            ("report.html", R.render_html))
-    if "coverage" in inspect.signature(R.render_markdown).parameters:
-        row = R.CoverageRow
-        cov = [row(item, what, ids) if ids else
-               row(item, what, (), note.removeprefix("not checkable, because "))
-               for item, what, ids, note in COVERAGE]
-        docs = {n: f(list(claims), spec, sections, coverage=cov) for n, f in fns}
-    else:
-        cov_sec = Section("Coverage of seed 002", ("Every numbered item mapped to claims or to "
-                                                   "why it cannot be checked.",),
-                          ("item", "what", "claims / reason"), coverage_rows())
-        views = [render_view(c) for c in claims]
-        docs = {n: f(views, spec, (*sections, cov_sec)) for n, f in fns}
-    docs["claims.json"] = json.dumps([c.to_dict() for c in claims], indent=1) + "\n"
+    docs = {n: f(list(claims), spec, sections, coverage=cov) for n, f in fns}
+    docs["claims.json"] = R.claims_json(claims)
     return docs
