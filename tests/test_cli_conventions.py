@@ -144,6 +144,12 @@ def test_click_usage_errors_print_as_lgw_errors(args):
     assert_one_error(run_lgw(args))
 
 
+@pytest.mark.parametrize("args", [[], ["simulate"]])
+def test_no_arguments_show_the_help(args):
+    r = run_lgw(args)
+    assert r.code == 2 and r.exception is None and "Usage: lgw" in r.stdout and not r.stderr
+
+
 def test_help_exits_0():
     r = run_lgw(["simulate", "mars", "--help"])
     assert r.code == 0 and "--dist-amplitude" in r.stdout and "[default: 20" in r.stdout

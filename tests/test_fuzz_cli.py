@@ -284,3 +284,35 @@ def test_strict_json_for_a_case_that_blows_up(tmp_path):
     assert _strict((out / "cases.json").read_text())["cases"] == doc["cases"]
     _strict((out / "summary.json").read_text())
     assert sorted(x.name for x in out.iterdir()) == ["cases.csv", "cases.json", "summary.json"]
+
+
+adversarial = st.one_of(st.sampled_from([0.0, -0.0, 1e-100, -1e-100, 1e-9, 1e6, -1e6, 1e12,
+                                         -1e12]),
+                        st.floats(-3000.0, 3000.0))
+state_rows = st.lists(st.tuples(*[adversarial] * 6, st.sampled_from([1905.0, 1600.0, 1e6,
+                                                                     1505.0 + 1e-9])),
+                      min_size=1, max_size=3)
+
+
+@settings(FUNCTION_SCOPED, max_examples=max(4, settings.default.max_examples // 6))
+@given(rows=state_rows, extra=st.lists(st.sampled_from(
+    ["--method dopri5", "--thrust-max 50000", "--disturbance sin", "--limit norm",
+     "--t-max 40", "--drag none"]), max_size=2, unique=True))
+def test_fuzz_simulate_real_flights_few_cases(tmp_path_factory, rows, extra):
+    """Real flights of 1-3 adversarial states (exact zeros, tiny, huge, sign mixtures): exit
+    0 with strict JSON holding one record per state and the same files under --out, or one
+    error line and nothing written."""
+    d = tmp_path_factory.mktemp("f")
+    p = d / "s.csv"
+    p.write_text("rx,ry,rz,vx,vy,vz,m\n" + "".join(",".join(repr(x) for x in r) + "\n"
+                                                 for r in rows))
+    out = d / "out"
+    args = ["simulate", "mars", "--initial-states", str(p), "--json", "--out", str(out)]
+    for e in extra:
+        args += e.split()
+    r = run_lgw(args)
+    check_run(r, out)
+    if r.code == 0:
+        doc = _strict(r.stdout)
+        assert len(doc["cases"]) == len(rows) == doc["summary"]["cases"]
+        assert _strict((out / "cases.json").read_text())["cases"] == doc["cases"]

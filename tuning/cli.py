@@ -105,13 +105,16 @@ def main(args: list[str] | None = None) -> None:
     """Run ``lgw``: every invalid input (lgw's ParameterError and click's usage errors alike)
     is one line ``error: ...`` on stderr and exit code 2, with no traceback."""
     try:
-        rc = cli(args=args, standalone_mode=False)
+        rc = cli(args=args, prog_name="lgw", standalone_mode=False)
     except ParameterError as e:
         click.echo(f"error: {_one_line(e)}", err=True)
         sys.exit(2)
     except click.exceptions.Abort:
         click.echo("aborted", err=True)
         sys.exit(1)
+    except click.exceptions.NoArgsIsHelpError as e:  # `lgw`, `lgw simulate`: show the help
+        click.echo(e.format_message())
+        sys.exit(2)
     except click.UsageError as e:  # includes BadParameter, NoSuchOption, MissingParameter
         hint = ""
         if e.ctx is not None:

@@ -199,16 +199,25 @@ def _print_cases(recs: list[dict[str, Any]], total: int, flagged: int,
                       "--out cases.json / cases.csv)")
 
 
-def settings_used(res: BatchResult, *, method: str, reference: bool,
-                  dispersion: str | None, initial_states: Path | None, cases: int,
-                  seed: int) -> dict[str, Any]:
-    """The settings that shaped the results, as flown: no disturbance amplitude without a
-    disturbance, no dopri5 tolerances with RK4."""
+def settings_used(res: BatchResult, opts: dict[str, Any], *, method: str, reference: bool,
+                  dispersion: str | None, initial_states: Path | None, cases: int
+                  ) -> dict[str, Any]:
+    """The settings that shaped the results, as flown: the simulator's own record
+    (``res.info``), completed from the options where the reference mode records less, and no
+    disturbance amplitude without a disturbance."""
+    from lgw.sim.mars.disturbances import amplitude_array
+
     st = dict(res.info)
+    st.setdefault("dist_amplitude", amplitude_array(opts["dist_amplitude"]).tolist())
+    for k in ("isp", "t_max", "seed"):
+        st.setdefault(k, opts[k])
+    st.setdefault("land_tol", list(opts["land_tol"]))
+    st.setdefault("guidance_drag", opts["guidance_drag"] or opts["drag"])
     if st.get("disturbance") == "none":
         st["dist_amplitude"] = None
-    st.update(method="reference" if reference else method, dt=res.dt, eps=res.eps,
-              cases=cases, seed=seed, dispersion=dispersion,
+    st.update(method="reference" if reference else method,
+              dt=None if reference else res.dt, eps=res.eps, cases=cases,
+              dispersion=dispersion,
               initial_states=None if initial_states is None else str(initial_states))
     return st
 
@@ -367,9 +376,9 @@ def command(gains_path: Path | None, law: str, dispersion: str | None,
     else:
         res = run_campaign(r0, v0, m0, gains, progress=progress, **opts)
     summ = summarize(res)
-    summ["settings"] = settings_used(res, method=method, reference=reference,
+    summ["settings"] = settings_used(res, opts, method=method, reference=reference,
                                      dispersion=dispersion, initial_states=initial_states,
-                                     cases=len(r0), seed=seed)
+                                     cases=len(r0))
     head = {"command": "simulate mars", **gains.to_dict()}
     # the table shows PER_CASE_ROWS cases: a million records only when they are written
     recs = case_records(res) if (as_json or out is not None) else None
