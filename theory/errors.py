@@ -14,3 +14,13 @@ class ParameterError(ValueError):
         if hint:
             msg += f" ({hint})"
         super().__init__(msg)
+
+
+class MissingDependency(RuntimeError):
+    """A library lgw declares as a dependency is absent from this environment (a partial or
+    old install): the message names the package and the command that installs it."""
+
+    def __init__(self, package: str, needed_for: str) -> None:
+        self.package = package
+        super().__init__(f"the Python package {package!r} is missing; it is needed for "
+                         f"{needed_for} (reinstall lgw, or: pip install {package})")

@@ -6,16 +6,25 @@ system in its module ``cmd_<verb>``.  This shell reads the mappings without impo
 command modules (so ``lgw --help`` and argument errors answer at once, before SymPy, numba or
 cvxpy load) and imports one module only when its command runs.  Every invalid parameter becomes
 one line ``error: ...`` and exit code 2, without a traceback and without writing anything.
+A dependency missing from a partial install is ``error: ...`` with exit 69, and a bug of lgw
+itself one line ``internal error: ...`` with exit 70 (sysexits.h EX_UNAVAILABLE, EX_SOFTWARE);
+``LGW_DEBUG=1`` re-raises it with its traceback.
 """
 
 from __future__ import annotations
 
 import importlib
+import os
 import sys
+import traceback
+from pathlib import Path
 
 import click
 from lgw import SYSTEMS
-from lgw.theory.errors import ParameterError
+from lgw.theory.errors import MissingDependency, ParameterError
+
+EXIT_UNAVAILABLE = 69  # a declared dependency is not installed
+EXIT_SOFTWARE = 70  # an internal error of lgw
 
 VERBS = {
     "bounds": "Settling-time, neighbourhood and landing-time bounds for a gain set.",
@@ -130,5 +139,16 @@ def main(args: list[str] | None = None) -> None:
     except KeyboardInterrupt:
         click.echo("interrupted", err=True)
         sys.exit(130)
+    except MissingDependency as e:
+        click.echo(f"error: {_one_line(e)}", err=True)
+        sys.exit(EXIT_UNAVAILABLE)
+    except Exception as e:  # a bug of lgw, not of the input: one line, the traceback on request
+        if os.environ.get("LGW_DEBUG"):
+            raise
+        where = traceback.extract_tb(e.__traceback__)[-1]
+        click.echo(f"internal error: {type(e).__name__}: {_one_line(e)} (at "
+                   f"{Path(where.filename).name}:{where.lineno}; rerun with LGW_DEBUG=1 for the "
+                   "traceback, and please report it)", err=True)
+        sys.exit(EXIT_SOFTWARE)
     if isinstance(rc, int) and rc:
         sys.exit(rc)

@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from lgw.theory.errors import MissingDependency
 from lgw.theory.lunar.gains import A_H, LoopGains
 
 
@@ -97,7 +98,11 @@ def hinf_gains(F1: np.ndarray, f1: np.ndarray, F2: np.ndarray) -> dict[str, floa
     out: dict[str, float] = {}
     for name, C in (("lambda1", C1), ("lambda2", C2)):
         sys = control.ss(A, B, C, np.zeros((C.shape[0], B.shape[1])))
-        gam, wpk = control.linfnorm(sys, tol=1e-10)
+        try:
+            gam, wpk = control.linfnorm(sys, tol=1e-10)
+        except control.ControlSlycot as exc:
+            raise MissingDependency("slycot", "python-control's H-infinity norm (linfnorm, "
+                                    "SLICOT AB13DD)") from exc
         w = np.concatenate([[0.0], np.logspace(-5, 4, 4000)])
         I = np.eye(A.shape[0])
         sweep = max(np.linalg.svd(C @ np.linalg.solve(1j * wi * I - A, B),
