@@ -348,6 +348,7 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
 
 
 HELPERS = (_inside, _clearance, _contact, _controller)
+INLINE = (_controller,)  # inlined into sys_sample (measured: see benchmarks/bench_eros.py)
 HOOKS = (sys_init, sys_rhs, sys_sample, sys_start, sys_step, sys_finish)
 SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY": LY, "LZ": LZ,
          "OUT": OUT, "TEV": TEV, "KCUR": KCUR, "F0": F0, "G0": G0, "SV0": SV0, "U0": U0,
@@ -357,8 +358,8 @@ SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY":
 def hooks_source() -> str:
     """The hooks as written into a kernel module, with their slots."""
     src = [inspect.getsource(f) + "\n" for f in HELPERS + HOOKS]
-    jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True)"
-            for f in HELPERS]
+    jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True"
+            + (", inline='always')" if f in INLINE else ")") for f in HELPERS]
            + [f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', inline='always')"
               for f in HOOKS])
     return "\n".join([*(f"{k} = {v!r}" for k, v in SLOTS.items()), "", *src, *jit])
