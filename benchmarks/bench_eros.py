@@ -70,6 +70,7 @@ def main() -> None:
     simulate(e0[:1], ed0[:1], g, SimOptions(t_final=0.05))  # kernel load outside the timing
     simulate_numpy(e0[:1], ed0[:1], g, SimOptions(t_final=0.05))  # lambdify caches
     t_kernel, res = best_of(lambda: simulate(e0, ed0, g, opts, ph), args.repeat)
+    t_np1, _ = best_of(lambda: simulate_numpy(e0, ed0, g, opts, ph), args.repeat)
     t0 = time.perf_counter()
     refs = [reference_solve(e0[i:i + 1], ed0[i:i + 1], g, opts, float(ph[i]))
             for i in range(args.cases)]
@@ -79,6 +80,8 @@ def main() -> None:
     print(f"kernel, RK4 n_sub = {opts.n_sub} (best of {args.repeat}): {t_kernel:.4f} s")
     print(f"per-case solve_ivp loop (one run):    {t_loop:.3f} s")
     print(f"ratio loop / kernel:                  {t_loop / t_kernel:.1f}")
+    print(f"numpy stand-in (best of {args.repeat}):          {t_np1:.4f} s")
+    print(f"ratio stand-in / kernel:              {t_np1 / t_kernel:.1f}")
     print(f"max |e_kernel - e_solve_ivp|:         {diff:.2e} m")
 
     mo = SimOptions(law="fuzzy", switch="sign", t_final=args.mc_t_final)

@@ -22,15 +22,20 @@ SCEN = (P.SCENARIO_OFFSET[None], P.SCENARIO_VOFFSET[None])
 METRIC_KEYS = ("t_reach", "t_track", "u_peak", "effort", "chatter", "iae", "e_final")
 
 
-# Absolute tolerances.  Same arithmetic (kernel against the stand-in): rounding only.  Against
-# solve_ivp: the positions are body-frame coordinates of ~1e4 m (ulp ~1e-12 m) and the errors
-# e = r - r_ref go to ~1e-5 m, where the FTSM gain beta r |e|^(r-1) amplifies the rounding of
-# r into e', s and u; measured worst over the 15 s scenario (RK4, n_sub = 2): e 1.9e-10 m,
-# e' 2.2e-8 m/s, s 6.1e-8 m/s, u 2.5e-6 m/s^2 (ftsmc-tanh).  They do not shrink with more
-# substeps (n_sub 1, 2, 4, 8: e' 5.6e-10, 2.2e-8, 2.0e-8, 2.1e-8), so they are rounding, not
-# truncation; dopri5 (rtol 1e-10, about one step per sample) agrees to ~1e-15.
+# Absolute tolerances.  Same arithmetic (kernel against the stand-in): rounding only (measured:
+# bitwise equal e on the scenario).  Against solve_ivp: the positions are body-frame
+# coordinates of ~1e4 m (ulp 1.8e-12 m) and every RK4 substep rounds its nearly constant
+# increment the same way, a drift of about an ulp per substep; the errors e = r - r_ref go to
+# ~1e-5 m, where the FTSM gain beta r |e|^(r-1) turns that into e', s and u.  Measured against
+# dopri5 at rtol 1e-12 (ftsmc-tanh, unknown D, 4 offsets, 15 s): max |e| difference 1.8e-12,
+# 6.1e-9, 4.4e-8, 3.5e-8, 2.0e-7 m for n_sub = 1, 2, 4, 8, 16: it grows with the number of
+# substeps, so it is rounding, not truncation (which the order test below sees at coarse
+# sampling); with n_sub = 2 against solve_ivp: e 6.1e-9 m, e' 8.7e-7 m/s, u 8.2e-5 m/s^2;
+# on the scenario (ftsmc-tanh, known D) e 1.9e-10, e' 2.2e-8, s 6.1e-8, u 2.5e-6.  dopri5
+# (rtol 1e-10, about one step per sample) agrees with solve_ivp to ~1e-15.
 SAME = {"e": 1e-10, "ed": 1e-10, "s": 1e-10, "u": 1e-10, "pos": 1e-10, "vel": 1e-10}
 TIGHT = {"e": 1e-9, "ed": 1e-7, "s": 1e-6, "u": 1e-4, "pos": 1e-9, "vel": 1e-7}
+LOOSE = {"e": 2e-8, "ed": 3e-6, "u": 3e-4}  # random offsets with D unknown (see above)
 
 
 def _agree(a, b, tol: dict[str, float]) -> None:
@@ -105,8 +110,10 @@ def test_kernel_against_solve_ivp_on_the_paper_scenario(law, switch):
     for i in range(4):
         r = reference_solve(e0[i:i + 1], ed0[i:i + 1], g, o, float(ph[i]), rtol=1e-10,
                             atol=1e-10)
-        np.testing.assert_allclose(res.e[:, i], r.e[:, 0], rtol=0, atol=TIGHT["e"])
-        np.testing.assert_allclose(res.u[:, i], r.u[:, 0], rtol=0, atol=TIGHT["u"])
+        for name in ("e", "ed", "u"):
+            np.testing.assert_allclose(getattr(res, name)[:, i], getattr(r, name)[:, 0],
+                                       rtol=0, atol=LOOSE[name], err_msg=name)
+        assert res.outcome[i] == r.outcome[0]
 
 
 def test_rk4_substeps_converge_at_fourth_order():
