@@ -13,7 +13,9 @@ break a rule (0 expected for each):
 Cases: offsets per component drawn from exact zeros (both signs), tiny (1e-300..1e-6), moderate
 (|x| <= 10), huge (1e2..1e12 m, 1e8 m/s) with random signs; each batch of ``--batch`` cases
 shares one variant and one gain set drawn with every gain scaled by 1, 1e-12..1e12 or the float
-limits 1e-300 / 1e300.  A few states per batch are re-flown by the solve_ivp reference
+limits 1e-300 / 1e300.  Each batch is flown by ``simulate`` (the compiled kernel) and audited;
+the whole batch is re-flown by the numpy stand-in (``simulate_numpy``) and the outcome class of
+every case compared; a few states per batch are re-flown by the solve_ivp reference
 (``--reference-per-batch``) and their outcome class compared.
 
     python benchmarks/adversarial_eros.py --cases 10000
@@ -27,7 +29,14 @@ import time
 import numpy as np
 from lgw.sim.eros import laws as SL
 from lgw.sim.eros import plant as PL
-from lgw.sim.eros.batch import OUTCOMES, SimOptions, metrics, reference_solve, simulate
+from lgw.sim.eros.batch import (
+    OUTCOMES,
+    SimOptions,
+    metrics,
+    reference_solve,
+    simulate,
+    simulate_numpy,
+)
 from lgw.theory.eros import reference as REF
 from lgw.theory.eros.gains import default_gains
 
@@ -112,8 +121,8 @@ def main() -> None:
     a = ap.parse_args()
     rng = np.random.default_rng(a.seed)
     counts = dict.fromkeys(OUTCOMES, 0)
-    unexpl = imposs = nonfin = ref_n = ref_agree = 0
-    disagree, examples = [], []
+    unexpl = imposs = nonfin = ref_n = ref_agree = np_agree = 0
+    disagree, np_disagree, examples = [], [], []
     t0 = time.perf_counter()
     done = 0
     while done < a.cases:
@@ -125,6 +134,12 @@ def main() -> None:
         e0, ed0 = components(rng, (n, 3), 1e12), components(rng, (n, 3), 1e8)
         ph = rng.uniform(0, 2 * np.pi, n)
         res = simulate(e0, ed0, g, opts, ph)
+        rn = simulate_numpy(e0, ed0, g, opts, ph)
+        same = rn.outcome == res.outcome
+        np_agree += int(same.sum())
+        for i in np.flatnonzero(~same)[:2]:
+            np_disagree.append((SL.variant_name(law, sw), dist, OUTCOMES[res.outcome[i]],
+                                OUTCOMES[rn.outcome[i]], e0[i].tolist(), ed0[i].tolist()))
         for i, c in enumerate(OUTCOMES):
             counts[c] += int(np.sum(res.outcome == i))
         ue, im, nf = audit(res)
@@ -149,7 +164,10 @@ def main() -> None:
     print(f"  unexplained      {unexpl}")
     print(f"  impossible       {imposs}")
     print(f"  NaN/inf          {nonfin}")
-    print(f"  RK4 vs solve_ivp outcome class: {ref_agree}/{ref_n} agree")
+    print(f"  kernel vs numpy stand-in outcome class: {np_agree}/{a.cases} agree")
+    for d in np_disagree[:10]:
+        print("   disagree (kernel, stand-in):", d)
+    print(f"  kernel vs solve_ivp outcome class: {ref_agree}/{ref_n} agree")
     for d in disagree[:10]:
         print("   disagree:", d)
     for x in examples[:5]:

@@ -30,12 +30,31 @@ result arrays):
                                   STOP_AT_NODE (accept the node, then stop: e.g. landing), or
                                   STOP_INSIDE (stop at t + theta h on the Hermite interpolant,
                                   the node is not accepted: e.g. dry mass);
-  sys_finish(i, t, y, S, C, Q, R) write the case's results.
+  sys_finish(i, t, y, S, C, Q, R) write the case's results;
+  sys_sample(i, k, t, y, S, C, Q, R) -> stop
+                                  optional (sampled-data systems, below; a no-op stub is
+                                  supplied when the system does not define it).
 The integrator itself writes the generic outcomes G = (nonfinite, t_end, y_end, steps,
 step_limit) and, when recording, y and X at every accepted node.
 
-Integration options O = (method, dt, nsteps, rtol, atol, max_step, t_max, max_steps, record),
-built by ``integration_tuple`` from ``lgw.sim.options.IntegrationOptions``.
+Integration options O = (method, dt, nsteps, rtol, atol, max_step, t_max, max_steps, ts, nsub,
+record), built by ``integration_tuple`` from ``lgw.sim.options.IntegrationOptions``.
+
+Sampled data with a zero-order hold (``integration_tuple(..., sample=(ts, nsub))``, ts > 0; off
+when ts = 0, the default, which leaves every existing client's arithmetic as it was).  A
+digital controller reads the state at the sample instants t_k = k ts and holds its output
+until t_k+1.  The held output is part of the state: components of y whose derivative sys_rhs
+sets to 0 (so RK4 and dopri5 keep them exactly constant between samples).  At t = 0 (before
+sys_rhs and sys_start) and at every t_k reached, the integrator calls sys_sample(i, k, t_k, y,
+...), which evaluates the controller from y and writes the new held values into y (it may also
+record per-sample outputs into R, and return True to stop the case at t_k); then y' at t_k is
+recomputed.  Between samples the plant is integrated by RK4 with exactly ``nsub`` steps of
+ts / nsub per sample (node times k ts + j ts / nsub), or by dopri5 with its steps clipped so
+that none crosses a sample instant (a step that would reach past t_k ends exactly at t_k, so
+the control jump is never inside a step and the error control stays meaningful).  The
+horizon is K = ceil(t_max / ts) samples; t_max should be a multiple of ts.  Events (sys_step)
+work as without sampling.  Note: dopri5's RMS error norm averages over all NY components, the
+held ones included (their error is 0).
 """
 
 from __future__ import annotations
@@ -149,7 +168,7 @@ def case(i, C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
 
     A serial function called from the kernel's loop: with the inlined vector field in the
     prange body itself the parallel compile took minutes."""
-    method, dt, nsteps, rtol, atol, hmax, t_max, max_steps, record = O
+    method, dt, nsteps, rtol, atol, hmax, t_max, max_steps, ts, nsub, record = O
     nonfinite, t_end, y_end, nstep_out, steplim = G
     Y = np.empty((3, NY))  # y, the stage input, the new node  # noqa: F821
     # RK4: k1..k4 and y' at the new node (row 4); dopri5: k1..k6 and k7 = y' at the new node
@@ -167,10 +186,16 @@ def case(i, C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
     XL = np.empty(NX)  # ... at the current node  # noqa: F821
     S = np.empty(NS)  # the system's trackers  # noqa: F821
     sys_init(i, C, Q, y, S)  # noqa: F821
+    ksamp = 0  # sampled data: the index of the latest sample
+    stop0 = False
+    if ts > 0.0:
+        stop0 = sys_sample(i, 0, 0.0, y, S, C, Q, R)  # the first held output  # noqa: F821
     sys_rhs(0.0, Y, 0, K, 0, X, i, C, Q)  # y' and the auxiliary outputs at t = 0  # noqa: F821
     for j in range(NX):  # noqa: F821
         XL[j] = X[j]
     done = sys_start(i, y, X, S, C, Q, R)  # noqa: F821
+    if stop0:
+        done = True
     if record:
         for j in range(NY):  # noqa: F821
             rec_y[i, 0, j] = y[j]
@@ -187,11 +212,17 @@ def case(i, C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
     while True:
         if done:
             break
+        on_sample = False  # sampled data: this step ends at a sample instant
         if method == 0:
             if step >= nsteps:
                 break
             h = dt
-            t_new = (step + 1) * dt
+            if ts > 0.0:
+                sub = step % nsub
+                on_sample = sub == nsub - 1
+                t_new = (ksamp + 1) * ts if on_sample else ksamp * ts + (sub + 1) * dt
+            else:
+                t_new = (step + 1) * dt
         else:
             rem = t_max - t
             if rem <= 1e-12 * t_max:
@@ -199,8 +230,15 @@ def case(i, C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
             if attempts >= max_steps:
                 stalled = True
                 break
-            h = h_try if h_try < rem * (1.0 - 1e-9) else rem
-            t_new = t + h if h < rem else t_max
+            if ts > 0.0:
+                t_smp = min((ksamp + 1) * ts, t_max)
+                rem = t_smp - t
+                on_sample = not h_try < rem * (1.0 - 1e-9)
+                h = rem if on_sample else h_try
+                t_new = t_smp if on_sample else t + h
+            else:
+                h = h_try if h_try < rem * (1.0 - 1e-9) else rem
+                t_new = t + h if h < rem else t_max
         # RK4 or the Dormand-Prince stages.  The stages and the new node (whose derivative
         # is the next step's k1) share one rhs call site: rhs is inlined, and four copies
         # of it made the compile several times slower
@@ -284,6 +322,13 @@ def case(i, C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
             XL[j] = X[j]
         t = t_new
         step += 1
+        if on_sample and code != STOP_AT_NODE:
+            # sampled data: the controller reads y(t_k) and holds its new output
+            ksamp += 1
+            done = sys_sample(i, ksamp, t, y, S, C, Q, R)  # noqa: F821
+            sys_rhs(t, Y, 0, K, 0, X, i, C, Q)  # y' at t_k with the new output  # noqa: F821
+            for j in range(NX):  # noqa: F821
+                XL[j] = X[j]
         if record:
             for j in range(NY):  # noqa: F821
                 rec_y[i, step, j] = y[j]
@@ -333,20 +378,47 @@ kernel_serial = numba.njit(kernel_serial, error_model="numpy", parallel=False, c
 '''
 
 
+SAMPLE_STUB = '''
+def sys_sample(i, k, t, y, S, C, Q, R):  # noqa: N803  (no sampled-data controller)
+    return False
+
+
+sys_sample = numba.njit(sys_sample, inline="always")
+'''
+
+
 def kernel_module_source(header: str, system_source: str, sizes: dict[str, int]) -> str:
     """A kernel module: the system's header (its generated law), the sizes NY, NX, NS, the
-    system's hooks, the integrator templates and their compilation."""
+    system's hooks (with a no-op ``sys_sample`` when the system has none), the integrator
+    templates and their compilation."""
     consts = "\n".join(f"{k} = {int(v)}" for k, v in sizes.items())
+    stub = "" if "def sys_sample(" in system_source else SAMPLE_STUB
     return "\n".join(["# generated by lgw.sim.integrate: do not edit (a cache entry)",
-                      *KERNEL_IMPORTS, "", header, "", consts, "", system_source, "",
+                      *KERNEL_IMPORTS, "", header, "", consts, "", system_source, stub, "",
                       template_source(), KERNEL_FOOTER])
 
 
-def integration_tuple(opt: IntegrationOptions, t_max: float) -> tuple:
-    """The kernel's O tuple for the options and horizon t_max (s)."""
-    nsteps = int(math.ceil(t_max / opt.dt - 1e-9))
-    return (METHOD_CODE[opt.method], float(opt.dt), nsteps, float(opt.rtol), float(opt.atol),
-            float(opt.max_step), float(t_max), int(opt.max_steps), bool(opt.record))
+def integration_tuple(opt: IntegrationOptions, t_max: float,
+                      sample: tuple[float, int] | None = None) -> tuple:
+    """The kernel's O tuple for the options and horizon t_max (s).
+
+    sample = (ts, nsub): sampled data with a zero-order hold at ts (s) (module docstring);
+    K = ceil(t_max / ts) samples, the horizon K ts.  RK4 then steps ts / nsub (``opt.dt`` is
+    not used; dopri5 starts with min(opt.dt, ts)), and nsteps = K nsub.  None: no sampling."""
+    if sample is None:
+        nsteps = int(math.ceil(t_max / opt.dt - 1e-9))
+        return (METHOD_CODE[opt.method], float(opt.dt), nsteps, float(opt.rtol),
+                float(opt.atol), float(opt.max_step), float(t_max), int(opt.max_steps), 0.0, 1,
+                bool(opt.record))
+    ts, nsub = float(sample[0]), sample[1]
+    if not (math.isfinite(ts) and ts > 0):
+        raise ValueError(f"sample time must be finite and > 0, got {ts!r}")
+    if isinstance(nsub, bool) or not isinstance(nsub, int | np.integer) or nsub < 1:
+        raise ValueError(f"substeps per sample must be an integer >= 1, got {nsub!r}")
+    k = int(math.ceil(t_max / ts - 1e-9))
+    dt = ts / nsub if opt.method == "rk4" else min(float(opt.dt), ts)
+    return (METHOD_CODE[opt.method], dt, k * int(nsub), float(opt.rtol), float(opt.atol),
+            float(opt.max_step), k * ts, int(opt.max_steps), ts, int(nsub), bool(opt.record))
 
 
 def generic_outputs(n: int, ny: int) -> dict[str, np.ndarray]:

@@ -145,8 +145,95 @@ def test_options_feed_the_kernel_tuple():
     io = IntegrationOptions(method="dopri5", dt=0.05, rtol=1e-6, atol=1e-7, max_step=1.0,
                             max_steps=10)
     O = integrate.integration_tuple(io, 1.0)  # noqa: N806
-    assert O == (1, 0.05, 20, 1e-6, 1e-7, 1.0, 1.0, 10, False)
+    assert O == (1, 0.05, 20, 1e-6, 1e-7, 1.0, 1.0, 10, 0.0, 1, False)  # no sampling
     assert integrate.integration_tuple(io, 0.999)[2] == math.ceil(0.999 / 0.05)
     with pytest.raises(ParameterError, match="record"):
         IntegrationOptions(method="dopri5", dt=0.05, rtol=1e-6, atol=1e-7, max_step=1.0,
                            max_steps=10, record=True)
+
+
+# --- sampled data with a zero-order hold ------------------------------------------------------
+
+ZOH_HOOKS = '''
+def sys_init(i, C, Q, y, S):
+    (y0,) = C
+    y[0] = y0[i, 0]
+    y[1] = y0[i, 1]
+    y[2] = 0.0
+
+
+def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):
+    K[kr, 0] = Y[yr, 1]
+    K[kr, 1] = Y[yr, 2]  # x'' = u, u held
+    K[kr, 2] = 0.0
+    X[0] = 0.0
+
+
+def sys_sample(i, k, t, y, S, C, Q, R):
+    kp, kd = Q
+    (u_rec, t_rec) = R
+    y[2] = -kp * y[0] - kd * y[1]
+    u_rec[i, k] = y[2]
+    t_rec[i, k] = t
+    return False
+
+
+def sys_start(i, y, X, S, C, Q, R):
+    return False
+
+
+def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):
+    return CONTINUE, 1.0
+
+
+def sys_finish(i, t, y, S, C, Q, R):
+    pass
+
+
+sys_init = numba.njit(sys_init, inline="always")
+sys_rhs = numba.njit(sys_rhs, inline="always")
+sys_sample = numba.njit(sys_sample, inline="always")
+sys_start = numba.njit(sys_start, inline="always")
+sys_step = numba.njit(sys_step, inline="always")
+sys_finish = numba.njit(sys_finish, inline="always")
+'''
+
+
+@pytest.fixture(scope="module")
+def zoh_kernel():
+    src = integrate.kernel_module_source("", ZOH_HOOKS, {"NY": 3, "NX": 1, "NS": 1})
+    return kernel_cache.load_module(f"test_zoh_{kernel_cache.key([src])}", lambda: src)
+
+
+@pytest.mark.parametrize("method, nsub", [("rk4", 1), ("rk4", 3), ("dopri5", 1)])
+def test_zero_order_hold_against_exact_recurrence(zoh_kernel, method, nsub):
+    """x'' = u with u_k = -kp x(t_k) - kd x'(t_k) held on [t_k, t_k+1): the exact sampled
+    solution is the recurrence x+ = x + v T + u T^2/2, v+ = v + u T (RK4 and dopri5 are exact
+    on a quadratic, so only rounding separates them).  Held value constant, samples at k T."""
+    ts, kp, kd, t_max = 0.1, 2.0, 0.7, 3.0
+    y0 = np.array([[1.0, 0.0], [-0.3, 2.0]])
+    n, kk = len(y0), 30
+    io = IntegrationOptions(method=method, dt=0.05, rtol=1e-10, atol=1e-12, max_step=1.0,
+                            max_steps=10_000)
+    O = integrate.integration_tuple(io, t_max, sample=(ts, nsub))  # noqa: N806
+    assert O[-3:-1] == (ts, nsub) and math.isclose(O[6], kk * ts)
+    u_rec, t_rec = np.full((n, kk + 1), np.nan), np.full((n, kk + 1), np.nan)
+    g = integrate.generic_outputs(n, 3)
+    G = tuple(g[k] for k in integrate.GENERIC_FIELDS)  # noqa: N806
+    integrate.run_chunk(zoh_kernel.kernel_serial, slice(0, n), (y0,), (kp, kd), (u_rec, t_rec),
+                        O, G, np.empty((1, 1, 3)), np.empty((1, 1, 1)))
+    x, v = y0[:, 0].copy(), y0[:, 1].copy()
+    u_ex = np.empty((n, kk + 1))
+    for k in range(kk + 1):
+        u_ex[:, k] = -kp * x - kd * v
+        if k < kk:  # the last sample, at t_max, is read but not applied
+            x, v = x + v * ts + u_ex[:, k] * ts**2 / 2, v + u_ex[:, k] * ts
+    np.testing.assert_allclose(t_rec, np.broadcast_to(np.arange(kk + 1) * ts, (n, kk + 1)),
+                               rtol=0, atol=1e-15)
+    np.testing.assert_allclose(u_rec, u_ex, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(g["y_end"][:, 0], x, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(g["t_end"], kk * ts, rtol=1e-15)
+    if method == "rk4":
+        assert (g["steps"] == kk * nsub).all()
+    else:  # no step crosses a sample: at least one step per sample
+        assert (g["steps"] >= kk).all()

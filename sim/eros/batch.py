@@ -1,7 +1,19 @@
 """Batched sampled-data simulation of seed 002's closed loop (all cases advance together).
 
-STAND-IN: a compact numpy-vectorised RK4 over cases, to be replaced by the shared numba
-integrator ``lgw.sim.integrate`` when it lands (same role: advance the plant between samples).
+Two implementations of the same loop, selected by ``SimOptions.engine``:
+
+  "kernel" (default)  the compiled kernel ``lgw.sim.eros.kernel`` on the shared integrator
+                      ``lgw.sim.integrate`` with its zero-order hold: RK4 with n_sub steps per
+                      sample, or (method="dopri5") Dormand-Prince 5(4) with rtol / atol and its
+                      steps clipped at the samples; cases in parallel (numba prange);
+  "numpy"             ``simulate_numpy``, the numpy-vectorised RK4 stand-in this module had
+                      before, kept as the independent cross-check (same ZOH, same substeps:
+                      the two agree to rounding, tests/eros/test_kernel.py).
+
+The kernel has the two-point and "none" gravity; ``gravity="polyhedron"`` (the Werner-Scheeres
+sum over the whole mesh in every right-hand side) runs on the numpy path whatever the engine,
+and so do gains whose expressions overflow in Python floats (``_controller``: every case is
+flagged non-finite at t0, as before).
 
 Sampled-data control (seed 002: "sampling time 0.01 s"): at each sample t_k the controller reads
 the state, the reference (8)-(10) and (known-D case) the disturbance D(t_k), computes u_k by the
@@ -37,7 +49,7 @@ counted as "nonfinite" (it only fails here when the state or control overflows).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cache
 
 import numpy as np
@@ -50,6 +62,7 @@ from lgw.theory.errors import ParameterError
 from scipy.integrate import solve_ivp
 
 DIST_MODES = ("known", "unknown", "none")
+ENGINES = ("kernel", "numpy")
 OUTCOMES = ("surface_contact", "nonfinite", "tracked", "horizon")
 
 
@@ -67,6 +80,10 @@ class SimOptions:
     dist: PL.Disturbance = field(default_factory=PL.Disturbance)
     reference: str = "exact"  # cubic coefficients: "exact" or "printed"
     t0: float = 0.0  # s, start time on the reference
+    engine: str = "kernel"  # "kernel" (lgw.sim.eros.kernel) or "numpy" (simulate_numpy)
+    method: str = "rk4"  # kernel only: "rk4" (n_sub steps per sample) or "dopri5"
+    rtol: float = 1e-10  # dopri5 only: relative tolerance
+    atol: float = 1e-10  # dopri5 only: absolute tolerance (m, m/s)
 
     def __post_init__(self) -> None:
         if (self.law, self.switch) not in SL.VARIANTS:
@@ -84,6 +101,17 @@ class SimOptions:
                                  + ", ".join(DIST_MODES))
         if self.reference not in ("exact", "printed"):
             raise ParameterError("reference", self.reference, "exact or printed")
+        if self.engine not in ENGINES:
+            raise ParameterError("engine", self.engine, "one of " + ", ".join(ENGINES))
+        if self.method not in ("rk4", "dopri5"):
+            raise ParameterError("method", self.method, "rk4 or dopri5")
+        if self.method == "dopri5" and self.engine == "numpy":
+            raise ParameterError("method", self.method, "dopri5 needs engine='kernel'")
+        for name, val in (("rtol", self.rtol), ("atol", self.atol)):
+            if not (isinstance(val, int | float) and np.isfinite(val) and val > 0):
+                raise ParameterError(name, val, "must be a finite number > 0")
+        if self.rtol < 1e-13:
+            raise ParameterError("rtol", self.rtol, "must be >= 1e-13 (double precision)")
 
 
 @dataclass
@@ -245,17 +273,113 @@ def initial_state(e0: np.ndarray, ed0: np.ndarray, opts: SimOptions) -> tuple[np
     return rp[None, :] + np.atleast_2d(e0), rv[None, :] + np.atleast_2d(ed0)
 
 
-def simulate(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
-             case_phase: np.ndarray | None = None) -> Result:
-    """Fly every case (rows of e0, ed0: initial position and velocity errors, m and m/s).
-
-    A case that touches the body or blows up is frozen from that sample on (module docstring);
-    the histories of a frozen case keep its last state, and its held control is 0."""
+def _checked(e0, ed0) -> tuple[np.ndarray, np.ndarray]:
     e0, ed0 = np.atleast_2d(np.asarray(e0, float)), np.atleast_2d(np.asarray(ed0, float))
-    if e0.shape != ed0.shape or e0.shape[1] != 3:
+    if e0.ndim != 2 or e0.shape != ed0.shape or e0.shape[1] != 3:
         raise ParameterError("e0", e0.shape, "e0 and ed0 must both be (cases, 3)")
     if not (np.all(np.isfinite(e0)) and np.all(np.isfinite(ed0))):
         raise ParameterError("e0", "non-finite", "initial errors must be finite")
+    return e0, ed0
+
+
+def _overflows(opts: SimOptions, g: Gains, e0: np.ndarray, ed0: np.ndarray) -> bool:
+    """True if the generated numpy law raises OverflowError for these gains (a gain expression
+    in Python floats, e.g. alpha**2 at alpha = 1e300; ``_controller`` then flags every case
+    non-finite at t0): such a gain set is flown by the numpy path, which does exactly that."""
+    pos, vel = initial_state(e0[:1], ed0[:1], opts)
+    rp, rv, ra = REF.evaluate(_ref_coef(opts), opts.t0)
+    try:
+        with np.errstate(all="ignore"):
+            f = PL.rotating_terms(pos, vel) + PL.gravity(pos, "two-point")
+            SL.evaluate(opts.law, opts.switch, pos - rp, vel - rv, f, np.zeros_like(pos),
+                        np.broadcast_to(ra, pos.shape), g)
+    except OverflowError:
+        return True
+    return False
+
+
+def simulate(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
+             case_phase: np.ndarray | None = None) -> Result:
+    """Fly every case (rows of e0, ed0: initial position and velocity errors, m and m/s) with
+    ``opts.engine`` (module docstring): the compiled kernel, or the numpy stand-in.
+
+    A case that touches the body or blows up is frozen from that sample on (module docstring);
+    the histories of a frozen case keep its last state, and its held control is 0."""
+    e0, ed0 = _checked(e0, ed0)
+    if _overflows(opts, g, e0, ed0):
+        return simulate_numpy(e0, ed0, g, replace(opts, method="rk4"), case_phase)
+    if opts.engine == "numpy" or opts.gravity == "polyhedron":
+        if opts.method != "rk4":
+            raise ParameterError("method", opts.method,
+                                 "dopri5 needs the kernel (two-point or no gravity)")
+        return simulate_numpy(e0, ed0, g, opts, case_phase)
+    return simulate_kernel(e0, ed0, g, opts, case_phase)
+
+
+def simulate_kernel(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
+                    case_phase: np.ndarray | None = None, chunk: int = 256,
+                    parallel: bool = True) -> Result:
+    """The compiled kernel (lgw.sim.eros.kernel) on the shared integrator's zero-order hold:
+    the same loop, outcomes and histories as ``simulate_numpy``; two-point or no gravity.
+    Cases run in chunks of ``chunk`` (numba prange inside a chunk when ``parallel``)."""
+    from lgw.sim import executors, integrate
+    from lgw.sim.eros import kernel as KN
+    from lgw.sim.options import IntegrationOptions
+
+    e0, ed0 = _checked(e0, ed0)
+    if opts.gravity not in KN.GRAVITY_CODE:
+        raise ParameterError("gravity", opts.gravity, "the kernel has "
+                             + ", ".join(KN.GRAVITY_CODE) + " (polyhedron: engine='numpy')")
+    n = len(e0)
+    cp = np.zeros(n) if case_phase is None else np.asarray(case_phase, float)
+    if cp.shape != (n,) or not np.all(np.isfinite(cp)):
+        raise ParameterError("case_phase", cp.shape, f"must be {n} finite numbers (rad)")
+    mod = KN.kernel_module()
+    K = int(round(opts.t_final / opts.dt))
+    pos0, vel0 = initial_state(e0, ed0, opts)
+    d = opts.dist
+    gm = np.array(P.TWO_POINT_GM, float)
+    Q = (KN.LAW_CODE[opts.law], KN.SWITCH_CODE[opts.switch],
+         np.array(SL.gain_values(g), float), np.ascontiguousarray(_ref_coef(opts)),
+         float(opts.t0), float(opts.dt), float(d.amp), float(d.freq),
+         np.asarray(d.phase, float), KN.DIST_CODE[opts.disturbance],
+         KN.GRAVITY_CODE[opts.gravity], float(P.OMEGA), np.asarray(P.TWO_POINT_P1, float),
+         np.asarray(P.TWO_POINT_P2, float), gm, True, *KN.body_arrays())
+    E, ED, SV = (np.empty((n, K + 1, 3)) for _ in range(3))
+    U = np.empty((n, K, 3))
+    code = np.zeros(n, np.int64)
+    t_ev = np.full(n, np.nan)
+    klast = np.zeros(n, np.int64)
+    pos, vel = np.empty((n, 3)), np.empty((n, 3))
+    R = (E, ED, SV, U, code, t_ev, klast, pos, vel)
+    io = IntegrationOptions(method=opts.method, dt=opts.dt, rtol=opts.rtol, atol=opts.atol,
+                            max_step=opts.dt, max_steps=50 * K + 1000)
+    O = integrate.integration_tuple(io, K * opts.dt, sample=(opts.dt, opts.n_sub))  # noqa: N806
+    gout = integrate.generic_outputs(n, KN.NY)
+    G = tuple(gout[k] for k in integrate.GENERIC_FIELDS)  # noqa: N806
+    C = (np.ascontiguousarray(pos0), np.ascontiguousarray(vel0), np.ascontiguousarray(cp))
+    kfn = mod.kernel_parallel if parallel else mod.kernel_serial
+    empty = np.empty((1, 1, 1))
+    executors.run_local(lambda sl: integrate.run_chunk(kfn, sl, C, Q, R, O, G, empty, empty),
+                        n, chunk)
+    # a step that blew up (or, dopri5, the step limit) ends the case inside sample interval
+    # k_last: non-finite, at that interval's t_k (as the stand-in)
+    blew = (gout["nonfinite"] | gout["step_limit"]) & (code == KN.RUNNING)
+    code[blew] = KN.NONFINITE
+    t_ev[blew] = opts.t0 + klast[blew] * opts.dt
+    ts = opts.t0 + opts.dt * np.arange(K + 1)
+    def tr(a: np.ndarray) -> np.ndarray:  # (cases, K, 3) -> (K, cases, 3), as the stand-in
+        return np.ascontiguousarray(np.moveaxis(a, 0, 1))
+
+    return Result(ts, tr(E), tr(ED), tr(SV), tr(U), pos, vel, code == KN.NONFINITE, opts, g,
+                  code == KN.CONTACT, t_ev)
+
+
+def simulate_numpy(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
+                   case_phase: np.ndarray | None = None) -> Result:
+    """The numpy stand-in: every case advanced together by vectorised RK4, n_sub steps per
+    sample (module docstring; the independent route for the kernel)."""
+    e0, ed0 = _checked(e0, ed0)
     n = len(e0)
     cp = np.zeros(n) if case_phase is None else np.asarray(case_phase, float)
     coef = _ref_coef(opts)
