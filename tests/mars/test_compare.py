@@ -6,8 +6,10 @@ its own certificate by a fresh simulation, and the report's bytes against a seco
 from __future__ import annotations
 
 import math
+import re
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -238,3 +240,82 @@ def test_report_with_comparison(tmp_path) -> None:
     md = (tmp_path / "report.md").read_text()
     assert "## Seed 000 Part 1 comparison (simulated)" in md and "tuned tf=" in md
     assert (tmp_path / "compare.png").stat().st_size > 10_000
+
+
+DOC = Path(__file__).resolve().parents[2] / "docs" / "optimal.md"
+NUM = re.compile(r"-?\d+(?:\.\d+)?(?:e[+-]\d+)?")
+
+
+def _doc_table() -> list[str]:
+    text = DOC.read_text()
+    a = text.index("<!-- lgw compare mars: begin -->")
+    b = text.index("<!-- lgw compare mars: end -->")
+    return [line.strip() for line in text[a:b].splitlines()[1:] if line.strip()]
+
+
+def _unit(tok: str) -> float | None:
+    """One unit of the last printed digit of a number token; None for an integer (exact)."""
+    mant, _, exp = tok.partition("e")
+    if "." not in mant and not exp:
+        return None
+    dec = len(mant.partition(".")[2])
+    return 10.0 ** (-dec) * 10.0 ** (int(exp) if exp else 0)
+
+
+def _same_within_rounding(doc: str, fresh: str) -> str | None:
+    """None if the two table lines agree: the same words, integers equal, every decimal
+    number within one unit of its last printed digit (a rounding flip); else the reason."""
+    d_words, f_words = NUM.split(doc), NUM.split(fresh)
+    if [" ".join(w.split()) for w in d_words] != [" ".join(w.split()) for w in f_words]:
+        return f"text differs: {doc!r} vs {fresh!r}"
+    for a, b in zip(NUM.findall(doc), NUM.findall(fresh), strict=True):
+        u = _unit(a)
+        if (u is None and a != b) or (u is not None and abs(float(a) - float(b)) > u * 1.000001):
+            return f"{a} (doc) vs {b} (fresh) in {doc!r}"
+    return None
+
+
+def test_doc_table_comparison_catches_a_change() -> None:
+    row = "tuned tf=90 s   0 landed  40.90  222.29  8.7/10.4/27.8  4.39e-07"
+    assert _same_within_rounding(row, row) is None
+    assert _same_within_rounding(row, row.replace("222.29", "222.30")) is None  # rounding
+    assert _same_within_rounding(row, row.replace("222.29", "221.53")) is not None  # stale
+    assert _same_within_rounding(row, row.replace("27.8", "16.7")) is not None
+    assert _same_within_rounding(row, row.replace("4.39e-07", "4.39e-06")) is not None
+    assert _same_within_rounding(row, row.replace("tf=90", "tf=91")) is not None
+    assert _same_within_rounding(row, row.replace("landed", "crashed")) is not None
+
+
+def test_optimal_doc_matches_a_fresh_comparison(comparison) -> None:
+    """docs/optimal.md's comparison table and the statements it makes about it, against a
+    fresh ``run_comparison`` with the command's defaults (issue 18: they had gone stale)."""
+    from lgw.tuning.mars.compare import format_table
+
+    rep, _, tuned = comparison
+    fresh = format_table(rep).splitlines()  # the header too
+    doc = _doc_table()
+    assert len(doc) == len(fresh), "docs/optimal.md: rows added or removed; paste the table anew"
+    bad = [why for d, f in zip(doc, fresh, strict=True)
+           if (why := _same_within_rounding(d, f)) is not None]
+    assert not bad, "docs/optimal.md is stale (re-run lgw compare mars):\n" + "\n".join(bad)
+    # the prose's numbers and claims
+    rows = {(r["label"], r["dist_amplitude"]): r for r in rep["rows"]}
+    text = " ".join(DOC.read_text().split())
+    opt, cor = rows["fuel-optimal (open loop)", 0.0], rows[
+        "fixed-time (25) corrected, default gains", 0.0]
+    assert (f"the corrected law uses {cor['fuel']:.1f} kg" in text
+            and f"against {opt['fuel']:.1f} kg, a ratio of {cor['fuel'] / opt['fuel']:.2f}"
+            in text)
+    closed = [r for r in rep["rows"] if r["method"] != "optimal"]
+    assert not any(r["landed"] for r in closed if r["dist_amplitude"] == 20.0)
+    assert all(r["outcome"].startswith("propellant exhausted") for r in closed
+               if r["method"] == "printed")
+    label = tuned[0][0]
+    t = rows[label, 0.0]
+    assert t["peak_after_arrival_axis"][2] == t["peak_thrust_axis"][2]
+    for r in closed:
+        if r["method"] == "bounded" and r["landed"]:
+            assert max(r["peak_after_arrival_axis"]) < 10e3  # near the hover thrust
+        if "tuned" in r["label"] or r["method"] == "bounded":
+            if r["landed"]:
+                assert r["fuel"] - r["dopri5"]["fuel"] > 1.0  # the chattering's share
