@@ -319,3 +319,45 @@ def test_optimal_doc_matches_a_fresh_comparison(comparison) -> None:
         if "tuned" in r["label"] or r["method"] == "bounded":
             if r["landed"]:
                 assert r["fuel"] - r["dopri5"]["fuel"] > 1.0  # the chattering's share
+
+
+def test_cli_choices_and_bad_input_write_nothing(tmp_path) -> None:
+    """--law takes the registered laws only; bad numbers and a bad [bounded] table of --gains
+    are lgw errors (exit 2, one line) and nothing is written."""
+    from tests.test_cli_conventions import assert_one_error, run_lgw
+
+    out = tmp_path / "out"
+    bad = tmp_path / "bad.toml"
+    bad.write_text((TUNED_DEFAULT.read_text().split("[certificate]")[0])
+                   + "\n[bounded]\nc1 = -1.0\n")
+    for args, word in ((["--law", "no-such-law"], "--law"),
+                       (["--law", "bounded", "--law", "nope"], "--law"),
+                       (["--dist-amplitude", "-1"], "--dist-amplitude"),
+                       (["--dist-amplitude", "inf"], "--dist-amplitude"),
+                       (["--thrust-max", "0"], "--thrust-max"),
+                       (["--thrust-max", "nan"], "--thrust-max"),
+                       (["--gains", str(bad), "--law", "bounded"], "bounded.c1")):
+        r = run_lgw(["compare", "mars", *args, "--out", str(out)])
+        assert_one_error(r)
+        assert word in r.stderr, (args, r.stderr)
+        assert not out.exists(), args
+
+
+def test_cli_one_law_writes_json_and_figure(tmp_path) -> None:
+    """`lgw compare mars --law bounded --dist-amplitude 1 --out DIR --json`: only the asked law
+    beside the optimum, one disturbed run, and both files (the figure used to crash --out)."""
+    import json
+
+    from tests.test_cli_conventions import run_lgw
+
+    out = tmp_path / "out"
+    r = run_lgw(["compare", "mars", "--law", "bounded", "--dist-amplitude", "1", "--json",
+                 "--out", str(out)])
+    assert r.code == 0 and r.exception is None, r.stderr
+    doc = json.loads(r.stdout)
+    assert doc["laws"] == ["bounded"] and doc["settings"]["tuned"] == []
+    assert {(x["method"], x["dist_amplitude"]) for x in doc["rows"]} == {
+        ("optimal", 0.0), ("optimal", 1.0), ("bounded", 0.0), ("bounded", 1.0)}
+    assert json.loads((out / "compare.json").read_text())["rows"] == doc["rows"]
+    png = (out / "compare.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000

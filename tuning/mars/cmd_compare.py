@@ -22,6 +22,7 @@ from lgw.tuning.mars.compare import (
     format_table,
     law_gain_sets,
     run_comparison,
+    tuned_law,
     tuned_sets,
 )
 from lgw.tuning.mars.compare import figure as comparison_figure
@@ -85,11 +86,12 @@ def command(gains_path: Path | None, tuned_paths: tuple[Path, ...],
                                        gains_name=name, thrust_max=thrust_max, laws=law_list)
     except RuntimeError as exc:
         raise click.ClickException(str(exc)) from exc
+    flown = [(p, lab, tg) for p, (lab, tg) in zip(list(tuned_paths) or [TUNED_DEFAULT], tuned,
+                                                  strict=True) if tuned_law(tg) in law_list]
     settings = {"dist_amplitudes": list(amplitudes), "thrust_max_axis": thrust_max,
-                "laws": law_list, "drag": drag, "n": n,
-                "tuned": [str(p) for p in tuned_paths] or [str(TUNED_DEFAULT)]}
+                "laws": law_list, "drag": drag, "n": n, "tuned": [str(p) for p, _, _ in flown]}
     doc = {"command": "compare mars", **gains.to_dict(), "settings": settings,
-           "tuned_gains": [{"label": lab, **tg.to_dict()} for lab, tg in tuned], **report}
+           "tuned_gains": [{"label": lab, **tg.to_dict()} for _, lab, tg in flown], **report}
     text = json_document(doc, indent=1)
     if out_dir is not None:
         make_out_dir(out_dir)
