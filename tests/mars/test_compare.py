@@ -361,3 +361,29 @@ def test_cli_one_law_writes_json_and_figure(tmp_path) -> None:
     assert json.loads((out / "compare.json").read_text())["rows"] == doc["rows"]
     png = (out / "compare.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
+
+
+def test_a_tuned_file_is_flown_with_the_law_its_certificate_names(tmp_path) -> None:
+    """A bounded-law tuned file gets a bounded row (not a corrected one); a file naming an
+    unregistered law is refused, not silently left out."""
+    from lgw.theory.mars.bounded import default_bounded
+    from lgw.tuning.mars.design_bounded import write_bounded_gains
+
+    from tests.test_cli_conventions import assert_one_error, run_lgw
+
+    f = tmp_path / "b.toml"
+    bg = default_bounded()
+    write_bounded_gains(f, bg, {"law": "bounded", "request": {"tf": 101.6}}, "# test")
+    tuned = tuned_sets([f])
+    assert tuned[0][0] == "bounded cascade, tuned tf=101.6 s"
+    sets = law_gain_sets("bounded", default_gains(), tuned, "default gains")
+    assert [lab for lab, _ in sets] == ["bounded cascade, [bounded] default", tuned[0][0]]
+    assert law_gain_sets("corrected", default_gains(), tuned, "default gains")[1:] == []
+    from lgw.sim.mars.laws import get_law
+
+    assert np.array_equal(get_law("bounded").param_values(sets[1][1]), bg.params())
+    bad = tmp_path / "x.toml"
+    bad.write_text(f.read_text().replace('law = "bounded"', 'law = "no-such-law"'))
+    r = run_lgw(["compare", "mars", "--tuned", str(bad), "--out", str(tmp_path / "o")])
+    assert_one_error(r)
+    assert "no-such-law" in r.stderr and not (tmp_path / "o").exists()

@@ -76,6 +76,10 @@ def command(gains_path: Path | None, tuned_paths: tuple[Path, ...],
     for p in tuned_paths:  # validated before anything runs or is written
         load_tuned(p)
     tuned = tuned_sets(list(tuned_paths))
+    for p, (_, tg) in zip(tuned_paths, tuned, strict=False):  # a file no law would fly
+        if tuned_law(tg) not in LAWS:
+            raise ParameterError(f"--tuned {p} certificate.law", tuned_law(tg),
+                                 f"must be a registered law: {', '.join(LAWS)}")
     law_list = list(dict.fromkeys(laws)) or list(LAWS)
     for law in law_list:  # each law's gains (e.g. a [bounded] table) checked before any run
         for _, g in law_gain_sets(law, gains, tuned, ""):

@@ -351,7 +351,7 @@ def figure_png(trajs: list[dict], thrust_max: float = THRUST_MAX_AXIS) -> bytes:
         fig.suptitle("Seed 000 Part 1, Table I: fuel-optimal (open loop) beside every "
                      "registered guidance law")
         n_leg = math.ceil((len(labels) + 2) / 3)
-        fig.tight_layout(rect=(0, min(0.3, 0.022 * n_leg + 0.025), 1, 1))
+        fig.tight_layout(rect=(0, min(0.3, 0.018 * n_leg + 0.02), 1, 1))
         return png_bytes(fig)
 
 
