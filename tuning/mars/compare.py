@@ -91,7 +91,7 @@ LABELS = {"corrected": "fixed-time (25) corrected", "printed": "fixed-time (25) 
 def _own_gains_label(law: str, gains: Gains, gains_name: str) -> str:
     if law == "super-twisting":
         return f"{LABELS[law]}, paper's B1, B2"
-    if law.startswith("bounded"):  # the bounded family reads a [bounded] table, else defaults
+    if law == "bounded":  # reads the [bounded] table of --gains, else its default
         has = "bounded" in (gains.extra or {})
         src = gains_name.removeprefix("gains ") if has else "default"
         return f"{LABELS.get(law, law)}, [bounded] {src}"
