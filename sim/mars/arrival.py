@@ -37,11 +37,13 @@ def after_arrival_peaks(r: np.ndarray, v: np.ndarray, F: np.ndarray,  # noqa: N8
     if r.ndim == 2:
         first, peak = after_arrival_peaks(r[None], v[None], F[None], tol)
         return first[0], peak[0]
+    if r.shape[1] == 0:  # nothing recorded (a run that never started)
+        return np.full(r.shape[::2], -1), np.full(r.shape[::2], np.nan)
     with np.errstate(invalid="ignore"):
         band = (np.abs(r) <= tol[0]) & (np.abs(v) <= tol[1])  # (N, S, 3); NaN -> False
     first = np.where(band.any(axis=1), np.argmax(band, axis=1), -1)
     n_s = r.shape[1]
     after = np.arange(n_s)[None, :, None] >= np.where(first < 0, n_s, first)[:, None, :]
     aF = np.where(after & np.isfinite(F), np.abs(F), -np.inf)  # noqa: N806
-    peak = aF.max(axis=1) if n_s else np.full(first.shape, -np.inf)
+    peak = aF.max(axis=1)
     return first, np.where((first < 0) | ~np.isfinite(peak), np.nan, peak)

@@ -387,3 +387,27 @@ def test_a_tuned_file_is_flown_with_the_law_its_certificate_names(tmp_path) -> N
     r = run_lgw(["compare", "mars", "--tuned", str(bad), "--out", str(tmp_path / "o")])
     assert_one_error(r)
     assert "no-such-law" in r.stderr and not (tmp_path / "o").exists()
+
+
+def test_a_law_registered_later_is_a_row_even_when_it_cannot_fly() -> None:
+    """A law registered after the comparison was written gets rows; if its parameters cannot
+    be had from the gain set (here: a gain with no default), the rows say so; the figure still
+    draws.  (Registered for this test only.)"""
+    from lgw.sim.mars.laws import LAWS, LawSpec, register_law
+    from lgw.theory.mars import bounded as B
+    from lgw.tuning.mars.compare import figure_png
+
+    def params(g):
+        return np.column_stack([B.bounded_from_extra(g.extra).params(),
+                                np.full(3, float(g.extra["w0"]))])
+    register_law(LawSpec("later-law", B.law_bounded_sat, B.PARAMS_SAT, params, "test only"))
+    try:
+        rep, trajs = run_comparison(default_gains(), [], amplitudes=[1.0], n=40)
+        assert rep["laws"][-1] == "later-law"
+        later = [r for r in rep["rows"] if r["method"] == "later-law"]
+        assert len(later) == 2 and all(r["outcome"].startswith("not flown: its gains (KeyError")
+                                       for r in later)
+        assert len(trajs) == len(rep["rows"])
+        assert figure_png(trajs)[:4] == b"\x89PNG"
+    finally:
+        LAWS.pop("later-law")

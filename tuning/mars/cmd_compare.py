@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import click
-from lgw.sim.mars.laws import LAWS, get_law
+from lgw.sim.mars.laws import LAWS
 from lgw.sim.mars.optimal import N_RANGE
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.parameters import THRUST_MAX_AXIS
@@ -19,6 +19,7 @@ from lgw.tuning.io import (
 from lgw.tuning.mars.compare import (
     AMPLITUDES,
     TUNED_DEFAULT,
+    cannot_fly,
     format_table,
     law_gain_sets,
     run_comparison,
@@ -83,7 +84,7 @@ def command(gains_path: Path | None, tuned_paths: tuple[Path, ...],
     law_list = list(dict.fromkeys(laws)) or list(LAWS)
     for law in law_list:  # each law's gains (e.g. a [bounded] table) checked before any run
         for _, g in law_gain_sets(law, gains, tuned, ""):
-            get_law(law).param_values(g)
+            cannot_fly(law, g)  # raises on bad input; other failures become a table row
     try:
         name = "default gains" if gains_path is None else f"gains {gains_path.name}"
         report, trajs = run_comparison(gains, tuned, amplitudes=amplitudes, drag=drag, n=n,

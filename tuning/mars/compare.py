@@ -217,6 +217,37 @@ def _closed_rows(law: str, label: str, gains: Gains, dists: list[tuple[str, floa
     return rows, trajs
 
 
+def cannot_fly(law: str, g: Gains) -> str | None:
+    """None if the law's parameters can be had from ``g`` (``LawSpec.param_values``); else why
+    not.  A ParameterError (a bad table in the user's gains file) propagates: bad input."""
+    from lgw.sim.mars.laws import get_law
+    from lgw.theory.errors import ParameterError
+
+    try:
+        get_law(law).param_values(g)
+    except ParameterError:
+        raise
+    except Exception as exc:  # a law registered without a default for some gain: say so
+        return f"not flown: its gains ({type(exc).__name__}: {exc})"
+    return None
+
+
+def _unflown_rows(law: str, label: str, dists: list[tuple[str, float]], why: str
+                  ) -> tuple[list[dict], list[dict]]:
+    nan3 = [math.nan] * 3
+    rows = [{"method": law, "label": label, "disturbance": dist, "dist_amplitude": amp,
+             "landed": False, "outcome": why, "fuel": math.nan, "landing_time": math.nan,
+             "t_end": math.nan, "pos_error": math.nan, "vel_error": math.nan,
+             "peak_thrust_axis": nan3, "peak_thrust": math.nan, "time_saturated": math.nan,
+             "peak_after_arrival_axis": nan3, "min_altitude": math.nan, "paper_fuel": math.nan}
+            for dist, amp in dists]
+    empty = np.zeros((0, 3))
+    trajs = [{"method": law, "label": label, "disturbance": dist, "dist_amplitude": amp,
+              "ended": why, "t": np.zeros(0), "r": empty, "v": empty, "m": np.zeros(0),
+              "F": empty} for dist, amp in dists]
+    return rows, trajs
+
+
 def disturbances(amplitudes: tuple[float, ...] | list[float]) -> list[tuple[str, float]]:
     """("none", 0) then ("sin", A) for each amplitude A (m/s^2), in the order given."""
     return [("none", 0.0)] + [("sin", float(a)) for a in amplitudes]
@@ -242,6 +273,12 @@ def run_comparison(gains: Gains, tuned: list[tuple[str, Gains]], *,
         paper = PAPER_FUEL.get(law, math.nan)
         for label, g in law_gain_sets(law, gains, tuned, gains_name):
             own = g is gains
+            why = cannot_fly(law, g)
+            if why is not None:  # shown with the reason, not dropped
+                r, t = _unflown_rows(law, label, dists, why)
+                rows += r
+                trajs += t
+                continue
             r, t = _closed_rows(law, label, g, dists, drag, paper if own else math.nan,
                                 thrust_max)
             rows += r
