@@ -27,6 +27,7 @@ import time
 from dataclasses import replace
 
 import numpy as np
+from lgw.sim.mars.arrival import after_arrival_peaks
 from lgw.sim.mars.campaign import table2_states, table3_states
 from lgw.theory.mars.bounds import axis_bounds
 from lgw.tuning.mars.design import (
@@ -154,18 +155,6 @@ def _tune_bounded_e2e(tf: float, thrust: float, envelope: str) -> tuple[float, o
     res = tune_bounded(req, env.boxes, env.m_max, simulate=lambda bg: simulate_check(
         bg, req, env.boxes, env.m_max, t_max=max(1.5 * tf, tf + 20)))
     return time.perf_counter() - t, res
-
-
-def after_arrival_peaks(r, v, F, tol=(0.1, 0.1)) -> tuple[np.ndarray, np.ndarray]:
-    """Per case and axis: the time index at which the axis first enters its landing band
-    (|r_i| <= tol[0], |v_i| <= tol[1]; -1 if never) and the peak |F_i| from then on (NaN after a
-    case stopped is ignored)."""
-    band = (np.abs(r) <= tol[0]) & (np.abs(v) <= tol[1])  # (N, S, 3)
-    first = np.where(band.any(axis=1), np.argmax(band, axis=1), -1)
-    S = r.shape[1]
-    after = np.arange(S)[None, :, None] >= np.where(first < 0, S, first)[:, None, :]
-    peak = np.nanmax(np.where(after, np.abs(F), -np.inf), axis=1)
-    return first, np.where(first < 0, np.nan, peak)
 
 
 def bounded_campaign(gains, tf: float, thrust: float, name: str, n: int, seed: int,

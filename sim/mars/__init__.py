@@ -11,4 +11,6 @@
 * ``campaign``     Table II / III dispersions, CSV states, local and dask executors;
 * ``interop``      the closed loop as a python-control ``nlsys``;
 * ``optimal``      the lossless-convexification fuel-optimal baseline (SOCP).
+* ``arrival``      thrust spikes after arrival (peak |F_i| once axis i is in its landing
+  band), from a recorded trajectory.
 """

@@ -78,7 +78,7 @@ def command(gains_path: Path | None, out_dir: Path | None, as_json: bool, with_c
             comparison, trajs = run_comparison(g, tuned, gains_name=name)
             fig = Figure("compare.png", "Seed 000 Part 1: altitude, horizontal distance and "
                          "max_i |F_i| against time, per method, without and with the "
-                         "disturbance", figure_png(trajs, comparison["amplitude"]))
+                         "disturbance", figure_png(trajs, comparison["thrust_max_axis"]))
             images.append(fig)
             sections.append(dataclasses.replace(report_section(comparison, None),
                                                 figures=(fig,)))
