@@ -28,6 +28,10 @@ class _Latex(LatexPrinter):
         return rf"\left\lceil {self._print(x)} \right\rfloor^{{{self._print(q)}}}"
 
 
+# name suffixes SymPy's LaTeX printer shows as accents, and the accent character for MathML
+_ACCENTS = {"ddot": "\u00a8", "dot": "\u02d9", "bar": "\u00af", "hat": "^", "tilde": "~"}
+
+
 class _MathML(MathMLPresentationPrinter):
     def _print_sig(self, e: sp.Basic):
         x, q = e.args
@@ -45,17 +49,19 @@ class _MathML(MathMLPresentationPrinter):
         return sup
 
     def _print_Symbol(self, sym: sp.Symbol, style: str = "plain"):
-        # SymPy's LaTeX printer turns a name "Vdot_2" into a dotted V; its MathML one does not
+        # SymPy's LaTeX printer turns a name "Vdot_2" into a dotted V ("fbar_1" into a barred
+        # f, "dhat" into a hatted d); its MathML one does not
         node = super()._print_Symbol(sym, style)
         nodes = [node] if node.tagName == "mi" else list(node.getElementsByTagName("mi"))
         for mi in nodes:
             text = mi.firstChild.nodeValue if mi.firstChild is not None else ""
-            if len(text) > 3 and text.endswith("dot"):
+            accent = next((a for a in _ACCENTS if len(text) > len(a) and text.endswith(a)), None)
+            if accent is not None:
                 over = self.dom.createElement("mover")
                 base = self.dom.createElement("mi")
-                base.appendChild(self.dom.createTextNode(text[:-3]))
+                base.appendChild(self.dom.createTextNode(text[:-len(accent)]))
                 dot = self.dom.createElement("mo")
-                dot.appendChild(self.dom.createTextNode("\u02d9"))
+                dot.appendChild(self.dom.createTextNode(_ACCENTS[accent]))
                 over.appendChild(base)
                 over.appendChild(dot)
                 if mi is node:
