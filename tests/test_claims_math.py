@@ -134,3 +134,16 @@ def test_prose_only_ids_exist():
     for system, prose in PROSE_ONLY.items():
         known = {c.id for c in _CACHE.get(system) or claims_of(system)} | scenario[system]
         assert set(prose) <= known, (system, set(prose) - known)
+
+
+@pytest.mark.parametrize("name, tex, accent", [
+    ("fbar_1", r"\bar{f}", "&#175;"), ("dhat_0", r"\hat{d}", "^"), ("Vdot_2", r"\dot{V}", "&#729;"),
+    ("xddot", r"\ddot{x}", "&#168;"), ("etilde", r"\tilde{e}", "~")])
+def test_mathml_accents_match_latex(name, tex, accent):
+    """A symbol name SymPy's LaTeX printer shows with an accent (fbar_1 as a barred f) gets the
+    same accent in the report's MathML, not the letters 'bar' (lgw.theory.report_math)."""
+    sym = sp.Symbol(name)
+    assert tex in RM.latex(sym)
+    m = RM.mathml(sym)
+    assert f"<mo>{accent}</mo></mover>" in m, m
+    assert not any(w in m for w in ("bar<", "hat<", "dot<", "tilde<")), m
