@@ -29,7 +29,9 @@ class _Latex(LatexPrinter):
 
 
 # name suffixes SymPy's LaTeX printer shows as accents, and the accent character for MathML
-_ACCENTS = {"ddot": "\u00a8", "dot": "\u02d9", "bar": "\u00af", "hat": "^", "tilde": "~"}
+# (all but the dot drawn as accents, accent="true", which keeps them close to the letter)
+_ACCENTS = {"ddot": "\u00a8", "dot": "\u02d9", "bar": "\u00af", "hat": "\u02c6",
+            "tilde": "\u02dc"}
 
 
 class _MathML(MathMLPresentationPrinter):
@@ -58,6 +60,8 @@ class _MathML(MathMLPresentationPrinter):
             accent = next((a for a in _ACCENTS if len(text) > len(a) and text.endswith(a)), None)
             if accent is not None:
                 over = self.dom.createElement("mover")
+                if accent != "dot":
+                    over.setAttribute("accent", "true")
                 base = self.dom.createElement("mi")
                 base.appendChild(self.dom.createTextNode(text[:-len(accent)]))
                 dot = self.dom.createElement("mo")

@@ -96,6 +96,14 @@ class at0(sp.Function):  # noqa: N801 (printed like a SymPy function)
         return row
 
 
+def relabel(rel: sp.Basic, fn) -> sp.Basic:
+    """A relation with ``fn`` applied to both sides, not evaluated (a renamed q ||z2|| >= 0
+    stays a relation rather than becoming True)."""
+    if isinstance(rel, sp.core.relational.Relational):
+        return rel.func(fn(rel.lhs), fn(rel.rhs), evaluate=False)
+    return fn(rel)
+
+
 def _with_expr(step: Step, expr: sp.Basic | tuple) -> Step:
     """``step`` (made by a prover) with the formula it asserts, for rendering."""
     return dataclasses.replace(step, expr=expr)
@@ -143,11 +151,13 @@ def v2dot_claim() -> Claim:
     f3, d0e, nz, q = S0.f3, S0.d0e, S0.nz, S0.q
     R = f3 * d0e * nz ** 2 / (d0e + f3 * nz)
     steps = [_residual_step(S) for S in systems()]
+    def shown(step: Step) -> Step:  # the prover's relation in display names
+        return _with_expr(step, relabel(step.expr, scalar_display))
     steps += [
-        prove_nonneg(q * nz, "d0e' = q ||z2|| >= 0 (8), so d0e(t) >= d0e(0) >= 0"),
-        prove_nonneg(f3 * nz ** 2 - R, "remainder R <= f3 ||z2||^2 when d0e >= 0 (the term "
-                     "f3bar ||z2||^2 of (13))"),
-        prove_nonneg(R, "remainder R >= 0: (13)'s f3bar ||z2||^2 is not slack"),
+        shown(prove_nonneg(q * nz, "d0e' = q ||z2|| >= 0 (8), so d0e(t) >= d0e(0) >= 0")),
+        shown(prove_nonneg(f3 * nz ** 2 - R, "remainder R <= f3 ||z2||^2 when d0e >= 0 (the "
+                           "term f3bar ||z2||^2 of (13))")),
+        shown(prove_nonneg(R, "remainder R >= 0: (13)'s f3bar ||z2||^2 is not slack")),
         Step("z2^T d - D ||z2|| <= 0 when ||d(t)|| <= D for all t (D constant)",
              Cited(CAUCHY, "z2^T d <= ||z2|| ||d|| <= D ||z2||", (
                  prove_nonneg(nz, "||z2|| >= 0"),)),
@@ -426,6 +436,10 @@ def z_l2_claim() -> Claim:
     Z1_of = (V0 - (f2b - f3b) * Z2 - sl) / f1b
     Z2_of = (V0 - f1b * Z1 - sl) / (f2b - f3b)
     gap = sp.Symbol("eps", positive=True)  # f2bar - f3bar
+    V20 = at0(V2S)
+    dsp = {f1b: F1B, f2b: F2B, f3b: F3B, V0: V20}
+    shown = {Z1: norm(Z1D) ** 2, Z2: norm(Z2D) ** 2, f1b: F1B, gap: F2B - F3B,
+             sl: sp.Symbol("sigma", nonnegative=True)}
     steps = [
         prove_nonneg(sp.simplify((V0 / f1b - Z1_of).subs(f2b, f3b + gap)),
                      "(19a): V2(0)/f1bar - ||z1||^2 >= 0 from integrating (13)"),
@@ -439,8 +453,8 @@ def z_l2_claim() -> Claim:
              Unproven("the printed V2(0) is smaller than V2(0) of (12) by (d0e(0) - D)^2/(2q) "
                       "unless d0e(0) = D; the bound uses the full V2(0)")),
     ]
-    V20 = at0(V2S)
-    dsp = {f1b: F1B, f2b: F2B, f3b: F3B, V0: V20}
+    steps[:2] = [_with_expr(st, relabel(st.expr, lambda x: x.xreplace(shown)))
+                 for st in steps[:2]]
     v20_printed = sp.Eq(V20, at0(Z1D) ** 2 / 2 + at0(Z2D) ** 2 / 2, evaluate=False)
     v20_derived = sp.Eq(V20, v20_printed.rhs + (at0(systems()[0].d0e) - Dd) ** 2 / (2 * q),
                         evaluate=False)
@@ -451,7 +465,8 @@ def z_l2_claim() -> Claim:
                  "f1^T x1(0)", tuple(steps), remarks=(
                      Step("(19b) as printed (V2(0)/f2bar) equals what (13) gives "
                           "(V2(0)/(f2bar - f3bar))", Identity(diff, "sympy.simplify", w),
-                          sp.Eq(Z2_printed, Z2_derived)),),
+                          sp.Eq(Z2_printed.xreplace(dsp), Z2_derived.xreplace(dsp),
+                                evaluate=False)),),
                  paper_expr=(sp.Le(norm(Z1D) ** 2, (V0 / f1b).xreplace(dsp), evaluate=False),
                              sp.Le(norm(Z2D) ** 2, Z2_printed.xreplace(dsp), evaluate=False),
                              v20_printed),
