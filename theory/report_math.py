@@ -213,3 +213,54 @@ def mathml_lines(expr: sp.Basic, width: int = 48) -> str:
         return mathml(expr)
     rows = "".join(f"<mtr><mtd><mrow>{m}</mrow></mtd></mtr>" for _, m in lines)
     return f"<math display='block'><mtable columnalign='left'>{rows}</mtable></math>"
+
+
+# --- display-only functions: quantities the claims name but SymPy has no notation for ------
+
+class Norm(sp.Function):
+    """||x||, a norm (e.g. the L2[0, t] norm of seed 001 (18)-(21)), for display only: it does
+    not evaluate."""
+
+    nargs = 1
+
+    def _latex(self, printer, exp: str | None = None) -> str:
+        s = rf"\left\| {printer._print(self.args[0])} \right\|"
+        return s if exp is None else f"{s}^{{{exp}}}"
+
+    def _mathml_presentation(self, printer):
+        row = printer.dom.createElement("mrow")
+        for part in ("\u2016", self.args[0], "\u2016"):
+            if isinstance(part, str):
+                mo = printer.dom.createElement("mo")
+                mo.appendChild(printer.dom.createTextNode(part))
+                row.appendChild(mo)
+            else:
+                row.appendChild(printer._print(part))
+        return row
+
+
+class At(sp.Function):
+    """x(p), the value of the quantity ``x`` (a symbol) at the point ``p`` (e.g. V_2(0), e(t_s)),
+    for display only: it does not evaluate."""
+
+    nargs = 2
+
+    def _latex(self, printer, exp: str | None = None) -> str:
+        x, p = self.args
+        s = rf"{printer._print(x)}\left({printer._print(p)}\right)"
+        return s if exp is None else rf"\left({s}\right)^{{{exp}}}"
+
+    def _mathml_presentation(self, printer):
+        x, p = self.args
+        row = printer.dom.createElement("mrow")
+        row.appendChild(printer._print(x))
+        for part in ("(", p, ")"):
+            if isinstance(part, str):
+                mo = printer.dom.createElement("mo")
+                mo.setAttribute("lspace", "0")
+                mo.setAttribute("rspace", "0")
+                mo.appendChild(printer.dom.createTextNode(part))
+                row.appendChild(mo)
+            else:
+                row.appendChild(printer._print(part))
+        return row

@@ -31,6 +31,7 @@ from lgw.theory.evidence import (
     Witness,
 )
 from lgw.theory.provers import identity_evidence, prove_identity, prove_nonneg
+from lgw.theory.report_math import At
 from scipy.integrate import quad, solve_ivp
 
 e, ed, r, alpha, beta, k, lam = L.e, L.ed, L.r, L.alpha, L.beta, L.k, L.lam
@@ -136,7 +137,7 @@ def settling_tsm_claim() -> Claim:
     derived = e0**c / (beta * c)
     sol = (e0**c - beta * c * tt) ** (1 / c)  # e(t) on [0, t_s]
     Y = sp.Symbol("Y", positive=True)
-    e_t = sp.Symbol("e(t)", positive=True)
+    e_t = sp.Function("e")(tt)
     steps = [
         _with_expr(prove_identity(sp.simplify(ts - derived), "separation of variables: t_s = "
                                   "int_0^|e0| de/(beta e^(p/q)) = |e0|^(1-p/q)/(beta (1-p/q))"),
@@ -148,7 +149,7 @@ def settling_tsm_claim() -> Claim:
                                   "e(t) = (|e0|^(1-r) - beta (1-r) t)^(1/(1-r)) solves e' = "
                                   "-beta e^r"), sp.Eq(e_t, disp(sol), evaluate=False)),
         _with_expr(prove_identity(sol.subs(tt, derived) - 0, "and reaches 0 at t = t_s"),
-                   sp.Eq(sp.Subs(e_t, tt, T_S), 0, evaluate=False)),
+                   sp.Eq(sp.Function("e")(T_S), 0, evaluate=False)),
     ]
     printed = B.ts_tsm_printed  # the formula after (5)
     pp, qq = sp.symbols("p q", positive=True)
@@ -455,7 +456,7 @@ def ueq_claim() -> Claim:
     mine = ue.subs({L.f: 2 * w * x4 + w**2 * x1 + gx, L.Dk: Dx, L.xdd: x2d_dot})
     same = prove_identity(sp.simplify(printed - mine), "the workbench's u_eq is the printed "
                           "(14) with f = 2 w x4 + w^2 x1 + g_x")
-    st = _with_expr(st, sp.Eq(sp.Subs(SDOT, U_S, 0), 0, evaluate=False))
+    st = _with_expr(st, sp.Eq(SDOT, 0, evaluate=False))
     same = _with_expr(same, sp.Eq(U_EQ, disp(printed), evaluate=False))
     return Claim("ueq-14", "(12)-(14)", "Equivalent control", "u_xeq = -(2 w x4 + w^2 x1 + g_x "
                  "+ D_x - x2d') - (x2 - x2d)(alpha + beta (p/q) e^(p/q-1))",
@@ -595,7 +596,7 @@ def sampled_tanh_claim() -> Claim:
     mult = prove_identity(sp.diff(step_map, sk).subs(sk, 0) - (1 - k * dt_ / phi),
                           "d s_{k+1}/d s_k at 0 = 1 - k dt/phi (the sampled boundary layer)")
     s_next = sp.Symbol("s_k+1", real=True)
-    mult = _with_expr(mult, sp.Eq(sp.Subs(sp.Derivative(step_map, sk), sk, 0), 1 - k * dt_ / phi,
+    mult = _with_expr(mult, sp.Eq(At(sp.Derivative(s_next, sk), 0), 1 - k * dt_ / phi,
                                   evaluate=False))
     g = P.DEFAULT_GAINS
     ok_tail = _tanh_map_tail(g["k"], g["phi"], P.DT_SAMPLE, 1.0)
@@ -880,7 +881,7 @@ def pd_claim() -> Claim:
     tol = sp.Symbol("epsilon", positive=True)
     t_tol = prove_identity(sp.simplify(sol.subs(tt, sp.log(e0 / tol) / lam) - tol),
                            "|e| = epsilon at t = ln(|e0|/epsilon)/lambda")
-    e_t, t_eps = sp.Symbol("e(t)", real=True), sp.Symbol("t_epsilon", positive=True)
+    e_t, t_eps = sp.Function("e")(tt), sp.Symbol("t_epsilon", positive=True)
     cancel = _with_expr(cancel, sp.Eq(SDOT, U_S, evaluate=False))
     slide = _with_expr(slide, sp.Eq(e_t, sol, evaluate=False))
     t_tol = _with_expr(t_tol, sp.Eq(t_eps, sp.log(e0 / tol) / lam, evaluate=False))

@@ -13,11 +13,13 @@ import math
 from functools import cache
 
 import sympy as sp
+from lgw.theory import report_math as RM
 from lgw.theory.evidence import Cited, Claim, Identity, Search, Step, Unproven, Witness
 from lgw.theory.lunar import law as L
 from lgw.theory.lunar.bounds import attitude_bounds, orbit_bounds
 from lgw.theory.lunar.gains import paper_gains
 from lgw.theory.provers import identity_evidence, prove_identity, prove_nonneg
+from lgw.theory.report_math import Norm as norm
 
 CAUCHY = ("Cauchy-Schwarz inequality: z^T d <= ||z|| ||d||")
 RAYLEIGH = ("Rayleigh quotient: x^T F x >= lambda_min(F) ||x||^2 for symmetric F (Horn & "
@@ -56,44 +58,9 @@ def scalar_display(expr: sp.Expr, z: bool = True) -> sp.Expr:
                        S.f3: F3S, S.B0[0, 0]: B0S})
 
 
-class norm(sp.Function):  # noqa: N801 (printed like a SymPy function)
-    """||x||, the L2[0, t] norm of seed 001 (18)-(21), for display only (no evaluation)."""
-
-    nargs = 1
-
-    def _latex(self, printer, exp: str | None = None) -> str:
-        s = rf"\left\| {printer._print(self.args[0])} \right\|"
-        return s if exp is None else f"{s}^{{{exp}}}"
-
-    def _mathml_presentation(self, printer):
-        row = printer.dom.createElement("mrow")
-        for part in ("\u2016", self.args[0], "\u2016"):
-            if isinstance(part, str):
-                mo = printer.dom.createElement("mo")
-                mo.appendChild(printer.dom.createTextNode(part))
-                row.appendChild(mo)
-            else:
-                row.appendChild(printer._print(part))
-        return row
-
-
-class at0(sp.Function):  # noqa: N801 (printed like a SymPy function)
-    """x(0), the initial value of the symbol x, for display only (seed 001 (19)-(21))."""
-
-    nargs = 1
-
-    def _latex(self, printer, exp: str | None = None) -> str:
-        s = rf"{printer._print(self.args[0])}(0)"
-        return s if exp is None else rf"\left({s}\right)^{{{exp}}}"
-
-    def _mathml_presentation(self, printer):
-        row = printer.dom.createElement("mrow")
-        row.appendChild(printer._print(self.args[0]))
-        for tag, text in (("mo", "("), ("mn", "0"), ("mo", ")")):
-            el = printer.dom.createElement(tag)
-            el.appendChild(printer.dom.createTextNode(text))
-            row.appendChild(el)
-        return row
+def at0(x: sp.Expr) -> sp.Expr:
+    """x(0), the initial value of ``x``, for display (seed 001 (19)-(21))."""
+    return RM.At(x, 0)
 
 
 def relabel(rel: sp.Basic, fn) -> sp.Basic:

@@ -8,10 +8,11 @@ from functools import cache
 
 import sympy as sp
 from lgw.theory.evidence import Claim, Identity, Step, Witness
-from lgw.theory.lunar.derivation import norm
 from lgw.theory.lunar.law import skew
 from lgw.theory.lunar.quaternion import dcm, qmul, reduce_unit
 from lgw.theory.provers import prove_identity
+from lgw.theory.report_math import At
+from lgw.theory.report_math import Norm as norm
 
 Ms = sp.MatrixSymbol  # display names of vectors and matrices (no verdict depends on them)
 
@@ -125,7 +126,7 @@ def failure_claim() -> Claim:
              _with_expr(prove_identity(sp.simplify(fac.subs(t, tf / 2) - (1 + Ta) / 2),
                                        "factor = (1 + T_a)/2 at t = t_f/2 (the midpoint of the "
                                        "failure)"),
-                        sp.Eq(sp.Subs(kappa, t, tf / 2), (1 + Ta) / 2, evaluate=False))]
+                        sp.Eq(At(kappa, tf / 2), (1 + Ta) / 2, evaluate=False))]
     v, un = Ms("v", 3, 1), Ms("u_norm", 3, 1)
     return Claim("failure-26", "(26)", "Failure model", "actual thrust = command for t <= tf/2 "
                  "and 70% of it after, approximated by atan",
@@ -137,7 +138,7 @@ def failure_claim() -> Claim:
                  paper_expr=(sp.Eq(kappa, fac, evaluate=False),),
                  derived_expr=(sp.Eq(Ms("f_a", 3, 1), kappa * (v + un) - un, evaluate=False),
                                sp.Eq(kappa, fac, evaluate=False),
-                               sp.Eq(sp.Subs(kappa, t, 0), fac.subs(t, 0),
+                               sp.Eq(At(kappa, 0), fac.subs(t, 0),
                                      evaluate=False)))
 
 
