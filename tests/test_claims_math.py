@@ -140,7 +140,8 @@ def test_prose_only_ids_exist():
 @pytest.mark.parametrize("name, tex, accent", [
     ("fbar_1", r"\bar{f}", "&#175;"), ("dhat_0", r"\hat{d}", "&#710;"),
     ("Vdot_2", r"\dot{V}", "&#729;"), ("xddot", r"\ddot{x}", "&#168;"),
-    ("etilde", r"\tilde{e}", "&#732;")])
+    ("etilde", r"\tilde{e}", "&#732;"), ("omegadot", r"\dot{\omega}", "&#729;"),
+    ("lambdabar_1", r"\bar{\lambda}", "&#175;")])
 def test_mathml_accents_match_latex(name, tex, accent):
     """A symbol name SymPy's LaTeX printer shows with an accent (fbar_1 as a barred f) gets the
     same accent in the report's MathML, not the letters 'bar' (lgw.theory.report_math)."""
@@ -148,4 +149,4 @@ def test_mathml_accents_match_latex(name, tex, accent):
     assert tex in RM.latex(sym)
     m = RM.mathml(sym)
     assert f"<mo>{accent}</mo></mover>" in m, m
-    assert not any(w in m for w in ("bar<", "hat<", "dot<", "tilde<")), m
+    assert not any(w in m for w in ("bar<", "hat<", "dot<", "tilde<", "omega", "lambda")), m

@@ -18,6 +18,7 @@ from typing import Any
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 from sympy.printing.mathml import MathMLPresentationPrinter
+from sympy.printing.pretty.pretty_symbology import greek_unicode
 
 SIG_NOTE = "sig(x, q) = |x|^q sgn(x) is written with ceiling-floor brackets: [x]^q"
 
@@ -63,7 +64,8 @@ class _MathML(MathMLPresentationPrinter):
                 if accent != "dot":
                     over.setAttribute("accent", "true")
                 base = self.dom.createElement("mi")
-                base.appendChild(self.dom.createTextNode(text[:-len(accent)]))
+                stem = text[:-len(accent)]
+                base.appendChild(self.dom.createTextNode(greek_unicode.get(stem, stem)))
                 dot = self.dom.createElement("mo")
                 dot.appendChild(self.dom.createTextNode(_ACCENTS[accent]))
                 over.appendChild(base)

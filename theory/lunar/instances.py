@@ -175,8 +175,9 @@ def attitude_kinematics_claim() -> Claim:
     e_w = Ms("e_w", 3, 1)
     ew_def = sp.Eq(e_w, Ms("omega", 3, 1) - Ms("L", 3, 3) * Ms("omega_d", 3, 1), evaluate=False)
     eqd = Ms("edot_q", 3, 1)
-    printed_disp = sp.Eq(eqd, (e[0] * sp.eye(3) + skew(sp.Matrix(e[1:]))) * ew / 2,
-                         evaluate=False)
+    ew_names = {a: sp.Symbol(f"e_w{i}", real=True) for i, a in enumerate(ew, 1)}
+    printed_disp = sp.Eq(eqd, ((e[0] * sp.eye(3) + skew(sp.Matrix(e[1:]))) * ew / 2)
+                         .xreplace(ew_names), evaluate=False)
     steps = [prove_identity(sp.expand(e_dot_direct - e_dot_form).norm() ** 2,
                             "e_Q = conj(Q_d) x Q: e_Q' = (e_Q x [0, w] - [0, w_d] x e_Q)/2"),
              _with_expr(prove_identity(sum(x ** 2 for x in red), "on unit e_Q: e_Q' = e_Q x "
@@ -187,8 +188,8 @@ def attitude_kinematics_claim() -> Claim:
                                        "/ 2"), printed_disp),
              _with_expr(prove_identity(sum(x ** 2 for x in redL), "L(e_Q)' = -S(e_w) L(e_Q) on "
                                        "unit e_Q (used in (27b))", method=GROEBNER),
-                        sp.Eq(Ms("Ldot", 3, 3), -sp.MatMul(skew(ew), Ms("L", 3, 3)),
-                              evaluate=False))]
+                        sp.Eq(Ms("Ldot", 3, 3), -sp.MatMul(skew(ew).xreplace(ew_names),
+                                                           Ms("L", 3, 3)), evaluate=False))]
     return Claim("attitude-27a", "(27a)", "Error-quaternion kinematics",
                  "e_q' = [eq0 I3 + S(e_q)] e_w / 2", "as printed, for unit quaternions, "
                  "e_Q = conj(Q_d) x Q, e_w = w - L(e_Q) w_d, Hamilton product, scalar first",
@@ -224,9 +225,12 @@ def attitude_dynamics_claim() -> Claim:
     steps[0] = _with_expr(steps[0], sp.Eq(Ms("omegadot", 3, 1), -Ms("J", 3, 3).inv() * (
         Ms("C_r", 3, 3) * Ms("omega", 3, 1) + Ms("n_r", 3, 1)) + Ms("J", 3, 3).inv()
         * Ms("M", 3, 1), evaluate=False))
+    # n_do in vector form: S(e_w) written out in display names e_w1..3, L w_d and L w_d' named
     ndo = Ms("n_do", 3, 1)
-    paper_n = sp.Eq(ndo, -printed, evaluate=False)
-    derived_n = sp.Eq(ndo, -derived, evaluate=False)
+    S_ew = skew(sp.Matrix(sp.symbols("e_w1:4", real=True)))
+    Lw, Lwd_ = Ms("L", 3, 3) * Ms("omega_d", 3, 1), Ms("L", 3, 3) * Ms("omegadot_d", 3, 1)
+    paper_n = sp.Eq(ndo, sp.MatMul(S_ew, Lw) + Lwd_, evaluate=False)  # -(printed)
+    derived_n = sp.Eq(ndo, -sp.MatMul(S_ew, Lw) + Lwd_, evaluate=False)  # -(derived)
     steps.append(Step("(27b) n_do as printed: e_w' - w' = -(S(e_w) L w_d + L w_d')",
                       Identity(sp.expand((derived - printed).norm() ** 2), "sympy.expand", wit),
                       sp.Eq(derived, printed, evaluate=False)))
