@@ -18,6 +18,7 @@ from typing import Any
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 from sympy.printing.mathml import MathMLPresentationPrinter
+from sympy.printing.pretty.pretty_symbology import greek_unicode
 
 SIG_NOTE = "sig(x, q) = |x|^q sgn(x) is written with ceiling-floor brackets: [x]^q"
 
@@ -26,6 +27,12 @@ class _Latex(LatexPrinter):
     def _print_sig(self, e: sp.Basic) -> str:
         x, q = e.args
         return rf"\left\lceil {self._print(x)} \right\rfloor^{{{self._print(q)}}}"
+
+
+# name suffixes SymPy's LaTeX printer shows as accents, and the accent character for MathML
+# (all but the dot drawn as accents, accent="true", which keeps them close to the letter)
+_ACCENTS = {"ddot": "\u00a8", "dot": "\u02d9", "bar": "\u00af", "hat": "\u02c6",
+            "tilde": "\u02dc"}
 
 
 class _MathML(MathMLPresentationPrinter):
@@ -45,17 +52,22 @@ class _MathML(MathMLPresentationPrinter):
         return sup
 
     def _print_Symbol(self, sym: sp.Symbol, style: str = "plain"):
-        # SymPy's LaTeX printer turns a name "Vdot_2" into a dotted V; its MathML one does not
+        # SymPy's LaTeX printer turns a name "Vdot_2" into a dotted V ("fbar_1" into a barred
+        # f, "dhat" into a hatted d); its MathML one does not
         node = super()._print_Symbol(sym, style)
         nodes = [node] if node.tagName == "mi" else list(node.getElementsByTagName("mi"))
         for mi in nodes:
             text = mi.firstChild.nodeValue if mi.firstChild is not None else ""
-            if len(text) > 3 and text.endswith("dot"):
+            accent = next((a for a in _ACCENTS if len(text) > len(a) and text.endswith(a)), None)
+            if accent is not None:
                 over = self.dom.createElement("mover")
+                if accent != "dot":
+                    over.setAttribute("accent", "true")
                 base = self.dom.createElement("mi")
-                base.appendChild(self.dom.createTextNode(text[:-3]))
+                stem = text[:-len(accent)]
+                base.appendChild(self.dom.createTextNode(greek_unicode.get(stem, stem)))
                 dot = self.dom.createElement("mo")
-                dot.appendChild(self.dom.createTextNode("\u02d9"))
+                dot.appendChild(self.dom.createTextNode(_ACCENTS[accent]))
                 over.appendChild(base)
                 over.appendChild(dot)
                 if mi is node:
@@ -203,3 +215,54 @@ def mathml_lines(expr: sp.Basic, width: int = 48) -> str:
         return mathml(expr)
     rows = "".join(f"<mtr><mtd><mrow>{m}</mrow></mtd></mtr>" for _, m in lines)
     return f"<math display='block'><mtable columnalign='left'>{rows}</mtable></math>"
+
+
+# --- display-only functions: quantities the claims name but SymPy has no notation for ------
+
+class Norm(sp.Function):
+    """||x||, a norm (e.g. the L2[0, t] norm of seed 001 (18)-(21)), for display only: it does
+    not evaluate."""
+
+    nargs = 1
+
+    def _latex(self, printer, exp: str | None = None) -> str:
+        s = rf"\left\| {printer._print(self.args[0])} \right\|"
+        return s if exp is None else f"{s}^{{{exp}}}"
+
+    def _mathml_presentation(self, printer):
+        row = printer.dom.createElement("mrow")
+        for part in ("\u2016", self.args[0], "\u2016"):
+            if isinstance(part, str):
+                mo = printer.dom.createElement("mo")
+                mo.appendChild(printer.dom.createTextNode(part))
+                row.appendChild(mo)
+            else:
+                row.appendChild(printer._print(part))
+        return row
+
+
+class At(sp.Function):
+    """x(p), the value of the quantity ``x`` (a symbol) at the point ``p`` (e.g. V_2(0), e(t_s)),
+    for display only: it does not evaluate."""
+
+    nargs = 2
+
+    def _latex(self, printer, exp: str | None = None) -> str:
+        x, p = self.args
+        s = rf"{printer._print(x)}\left({printer._print(p)}\right)"
+        return s if exp is None else rf"\left({s}\right)^{{{exp}}}"
+
+    def _mathml_presentation(self, printer):
+        x, p = self.args
+        row = printer.dom.createElement("mrow")
+        row.appendChild(printer._print(x))
+        for part in ("(", p, ")"):
+            if isinstance(part, str):
+                mo = printer.dom.createElement("mo")
+                mo.setAttribute("lspace", "0")
+                mo.setAttribute("rspace", "0")
+                mo.appendChild(printer.dom.createTextNode(part))
+                row.appendChild(mo)
+            else:
+                row.appendChild(printer._print(part))
+        return row

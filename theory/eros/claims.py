@@ -10,6 +10,7 @@ The scenario claims (the paper's simulations) need the simulator and are built i
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from functools import cache
 
@@ -30,6 +31,7 @@ from lgw.theory.evidence import (
     Witness,
 )
 from lgw.theory.provers import identity_evidence, prove_identity, prove_nonneg
+from lgw.theory.report_math import At
 from scipy.integrate import quad, solve_ivp
 
 e, ed, r, alpha, beta, k, lam = L.e, L.ed, L.r, L.alpha, L.beta, L.k, L.lam
@@ -38,6 +40,36 @@ e0 = sp.Symbol("e_0", positive=True)  # |e(0)|
 c = sp.Symbol("c", positive=True)  # 1 - p/q, in (0, 1)
 tt = sp.Symbol("t", nonnegative=True)
 SEED = 2
+
+# --- Display forms: the formulas the report renders (paper_expr / derived_expr / Step.expr).
+# They are the SymPy objects the proofs use, renamed for reading (e' as edot, r as p/q, c as
+# 1 - p/q, E as |e|); no verdict depends on them.
+P_, Q_ = sp.symbols("p q", positive=True)
+EDOT, EDDOT, SDOT, VDOT = sp.symbols("edot eddot sdot Vdot_1", real=True)
+T_S, T_R = sp.symbols("t_s t_r", positive=True)
+U_EQ, U_S = sp.symbols("u_eq u_s", real=True)
+XDD = sp.Symbol("xddot_d", real=True)  # the reference acceleration x_2d'
+
+
+EPOS = sp.Symbol("e", positive=True)  # |e| as an integration variable
+
+
+def disp(expr: sp.Basic) -> sp.Basic:
+    """``expr`` in the paper's names: e' as edot, r = p/q, c = 1 - p/q, E = |e| (an integration
+    variable E: e > 0) (seed 002, eqs. (5)-(6), (11))."""
+    has_int = bool(expr.atoms(sp.Integral))
+    return expr.xreplace({ed: EDOT, E: EPOS if has_int else sp.Abs(e), L.xdd: XDD}).xreplace(
+        {c: 1 - P_ / Q_}).xreplace({r: P_ / Q_})
+
+
+def sig_disp(x: sp.Expr) -> sp.Expr:
+    """sig(x)^(p/q) = |x|^(p/q) sgn(x) in display names."""
+    return disp(L.sig(x, r))
+
+
+def _with_expr(step: Step, expr: sp.Basic | tuple) -> Step:
+    """``step`` (made by a prover) with the formula it asserts, for rendering."""
+    return dataclasses.replace(step, expr=expr)
 
 
 def on_branches(expr: sp.Expr, statement: str, **kw) -> Step:
@@ -105,14 +137,19 @@ def settling_tsm_claim() -> Claim:
     derived = e0**c / (beta * c)
     sol = (e0**c - beta * c * tt) ** (1 / c)  # e(t) on [0, t_s]
     Y = sp.Symbol("Y", positive=True)
+    e_t = sp.Function("e")(tt)
     steps = [
-        prove_identity(sp.simplify(ts - derived), "separation of variables: t_s = int_0^|e0| "
-                       "de/(beta e^(p/q)) = |e0|^(1-p/q)/(beta (1-p/q))"),
+        _with_expr(prove_identity(sp.simplify(ts - derived), "separation of variables: t_s = "
+                                  "int_0^|e0| de/(beta e^(p/q)) = |e0|^(1-p/q)/(beta (1-p/q))"),
+                   sp.Eq(disp(sp.Integral(E ** (-(1 - c)), (E, 0, e0)) / beta), disp(derived),
+                         evaluate=False)),
         # chain rule with Y = |e0|^(1-r) - beta (1-r) t > 0 on [0, t_s): dY/dt = -beta (1-r)
-        prove_identity(sp.simplify(sp.diff(Y ** (1 / c), Y) * (-beta * c)
-                                   + beta * (Y ** (1 / c)) ** (1 - c)),
-                       "e(t) = (|e0|^(1-r) - beta (1-r) t)^(1/(1-r)) solves e' = -beta e^r"),
-        prove_identity(sol.subs(tt, derived) - 0, "and reaches 0 at t = t_s"),
+        _with_expr(prove_identity(sp.simplify(sp.diff(Y ** (1 / c), Y) * (-beta * c)
+                                              + beta * (Y ** (1 / c)) ** (1 - c)),
+                                  "e(t) = (|e0|^(1-r) - beta (1-r) t)^(1/(1-r)) solves e' = "
+                                  "-beta e^r"), sp.Eq(e_t, disp(sol), evaluate=False)),
+        _with_expr(prove_identity(sol.subs(tt, derived) - 0, "and reaches 0 at t = t_s"),
+                   sp.Eq(sp.Function("e")(T_S), 0, evaluate=False)),
     ]
     printed = B.ts_tsm_printed  # the formula after (5)
     pp, qq = sp.symbols("p q", positive=True)
@@ -146,7 +183,8 @@ def settling_tsm_claim() -> Claim:
                  "one is negative for every p < q", tuple(steps) + (neg, search),
                  scope="all-gains", remarks=(swap,),
                  numbers={"witness": w.to_dict()},
-                 paper_expr=pr_sym, derived_expr=derived)
+                 paper_expr=sp.Eq(T_S, pr_sym, evaluate=False),
+                 derived_expr=sp.Eq(T_S, disp(derived), evaluate=False))
 
 
 @cache
@@ -157,11 +195,15 @@ def settling_ftsm_claim() -> Claim:
     integrand = 1 / (alpha * E + beta * E ** (1 - c))
     derived = sp.log(1 + alpha * e0**c / beta) / (alpha * c)
     steps = [
-        prove_identity(sp.simplify(sp.diff(F, E) - integrand),
-                       "d/de [ln(alpha e^(1-r) + beta)/(alpha(1-r))] = 1/(alpha e + beta e^r)"),
-        prove_identity(sp.expand_log(F.subs(E, e0) - sp.limit(F, E, 0, "+") - derived,
-                                     force=True),
-                       "t_s = F(|e0|) - F(0+) = ln(1 + alpha|e0|^(1-r)/beta)/(alpha(1-r))"),
+        _with_expr(prove_identity(sp.simplify(sp.diff(F, E) - integrand),
+                                  "d/de [ln(alpha e^(1-r) + beta)/(alpha(1-r))] = 1/(alpha e + "
+                                  "beta e^r)"),
+                   sp.Eq(sp.Derivative(disp(F), e), disp(integrand), evaluate=False)),
+        _with_expr(prove_identity(sp.expand_log(F.subs(E, e0) - sp.limit(F, E, 0, "+") - derived,
+                                                force=True),
+                                  "t_s = F(|e0|) - F(0+) = ln(1 + alpha|e0|^(1-r)/beta)/(alpha"
+                                  "(1-r))"),
+                   sp.Eq(T_S, disp(sp.Integral(integrand, (E, 0, e0))), evaluate=False)),
     ]
     rv, av, bv, ev_ = _sample(400, SEED + 1)
     margins = []
@@ -189,7 +231,9 @@ def settling_ftsm_claim() -> Claim:
                  "t_s = p/(alpha(p-q)) (ln(alpha e1^((p-q)/p) + beta) - ln beta)",
                  "t_s = q/(alpha(q-p)) ln(1 + alpha|e0|^((q-p)/q)/beta); the printed (7) is "
                  "negative for every p < q", tuple(steps) + (search,), remarks=(swap,),
-                 numbers={"witness": w.to_dict()}, paper_expr=pr_sym, derived_expr=derived)
+                 numbers={"witness": w.to_dict()},
+                 paper_expr=sp.Eq(T_S, pr_sym, evaluate=False),
+                 derived_expr=sp.Eq(T_S, disp(derived), evaluate=False))
 
 
 @cache
@@ -208,9 +252,14 @@ def settling_ode_claim() -> Claim:
     step = Step(f"|t_ode - t_closed| / t_closed <= {tol} (surfaces (5) alpha = 0 and (6))",
                 Search(PARAM_DOMAIN, "random sampling, solve_ivp DOP853 rtol 1e-11",
                        2 * len(rv), tol - worst, wpt, SEED + 2))
+    t_ode = sp.Symbol("t_ode", positive=True)
+    rel_e = sp.Le(sp.Abs(t_ode - T_S) / T_S, sp.Float(tol, 2), evaluate=False)
     return Claim("settling-ode", "(5), (6)", "Derived settling times against an ODE solve",
-                 "-", f"closed forms agree with the ODE to {worst:.2e} relative", (step,),
-                 numbers={"worst_relative_error": worst})
+                 "-", f"closed forms agree with the ODE to {worst:.2e} relative",
+                 (dataclasses.replace(step, expr=rel_e),),
+                 numbers={"worst_relative_error": worst},
+                 derived_expr=(sp.Eq(EDOT, -alpha * e - beta * sig_disp(e), evaluate=False),
+                               rel_e))
 
 
 @cache
@@ -238,7 +287,12 @@ def growth_claim() -> Claim:
     return Claim("growth-e0", "(5)", "Growth of the settling time with |e0|",
                  "the convergence time increases proportional to |e1(0)|^((p-q)/p)",
                  "it grows as |e0|^((q-p)/q) (true growth); the printed exponent is negative",
-                 (grow, neg, step), numbers={"ratio_ode": ratio_ode, "ratio_printed": ratio_pr})
+                 (_with_expr(grow, sp.Gt(sp.Derivative(T_S, e0), 0, evaluate=False)), neg, step),
+                 numbers={"ratio_ode": ratio_ode, "ratio_printed": ratio_pr},
+                 paper_expr=(sp.Eq(T_S, sp.Symbol("C", positive=True)
+                                   * e0 ** ((P_ - Q_) / P_), evaluate=False),),
+                 derived_expr=(sp.Eq(T_S, disp(derived), evaluate=False),
+                               sp.Eq(sp.Derivative(T_S, e0), disp(d_dt), evaluate=False)))
 
 
 @cache
@@ -260,10 +314,19 @@ def ftsm_faster_claim() -> Claim:
                          "alpha|e| / (beta|e|^r) -> oo as |e| -> oo (far: e' ~ -alpha e)")
     near = prove_identity(sp.limit(quot, ratio, 0, "+"),
                           "alpha|e| / (beta|e|^r) -> 0 as e -> 0 (near: e' ~ -beta e^r)")
+    t_t, t_f = sp.symbols("t_TSM t_FTSM", positive=True)
+    diff = _with_expr(diff, sp.Eq(t_t - t_f, disp(h.subs(x, alpha * e0**c / beta) / (alpha * c)),
+                                  evaluate=False))
+    far = _with_expr(far, sp.Eq(sp.Limit(disp(quot), ratio, sp.oo), sp.oo, evaluate=False))
+    near = _with_expr(near, sp.Eq(sp.Limit(disp(quot), ratio, 0, "+"), 0, evaluate=False))
     return Claim("ftsm-faster", "(6)", "The alpha term lowers the convergence time",
                  "adding alpha e lowers the convergence time; far: e' ~ -alpha e, near: "
                  "e' ~ -beta e^(p/q)", "t_FTSM < t_TSM for every e0 != 0, alpha, beta > 0",
-                 (diff, mono, far, near))
+                 (diff, mono, far, near),
+                 paper_expr=(sp.Lt(t_f, t_t, evaluate=False),),
+                 derived_expr=(sp.Eq(t_t, disp(t_tsm), evaluate=False),
+                               sp.Eq(t_f, disp(t_ftsm), evaluate=False),
+                               sp.Lt(t_f, t_t, evaluate=False)))
 
 
 # --- reaching ------------------------------------------------------------------------------
@@ -314,10 +377,15 @@ def reaching_claim() -> Claim:
                   Search({"k": "[0.1, 5] m/s^2", "dbar/k": "[0, 0.95]", "s0": "[-10, 10] m/s",
                           "w": "[0.1, 10] rad/s"}, "random sampling, solve_ivp rtol 1e-10", n,
                          worst, wpt, SEED))
+    s0s = sp.Symbol("s_0", real=True)
+    bound = sp.Le(T_R, sp.Abs(s0s) / (k - dbar_p), evaluate=False)
     return Claim("reaching-sign", "(15)-(18)", "Reaching time under the switching law",
                  "u_s = -k1 sgn(s1) drives the states to the sliding surface",
                  "known D: t_r = |s0|/k exactly; |D| <= dbar < k unknown: t_r <= |s0|/(k-dbar)",
-                 (cmp_, search), numbers={"worst_margin_s": worst})
+                 (dataclasses.replace(cmp_, expr=bound), search),
+                 numbers={"worst_margin_s": worst},
+                 paper_expr=(sp.Eq(U_S, L.u_switch("sign", sv), evaluate=False),),
+                 derived_expr=(sp.Eq(T_R, sp.Abs(s0s) / k, evaluate=False), bound))
 
 
 @cache
@@ -336,11 +404,18 @@ def reaching_tanh_claim() -> Claim:
                  "band |s| <= phi artanh(dbar/k) is all the theory gives",
                  Unproven("a practical (ultimate-boundedness) result: the boundary layer trades "
                           "finite-time reaching for a band; nothing finer is claimed"))
+    sb, s0s = sp.Symbol("s_b", positive=True), sp.Symbol("s_0", real=True)
+    dbar = sp.Symbol("dbar", nonnegative=True)
+    band = sp.Le(sp.Abs(L.s), phi * sp.atanh(dbar / k), evaluate=False)
+    entry = sp.Le(T_R, (sp.Abs(s0s) - sb) / (k * sp.tanh(sb / phi) - dbar), evaluate=False)
+    rate = dataclasses.replace(rate, expr=entry)
     return Claim("reaching-tanh", "(18) with tanh", "Reaching with the tanh 'saturation'",
                  "tanh instead of sgn removes chattering and keeps the tracking",
                  "only a band |s| <= phi artanh(dbar/k) is reached, in time <= (|s0| - s_b)/"
                  "(k tanh(s_b/phi) - dbar); with known D (dbar = 0) s -> 0 exponentially near 0",
-                 (rate,), remarks=(inner,))
+                 (rate,), remarks=(inner,),
+                 paper_expr=(sp.Eq(U_S, L.u_switch("tanh"), evaluate=False),),
+                 derived_expr=(band, entry))
 
 
 # --- (11)-(19): control design ---------------------------------------------------------------
@@ -348,7 +423,7 @@ def reaching_tanh_claim() -> Claim:
 @cache
 def sdot_claim() -> Claim:
     # total derivative of s along e' = ed, ed' = edd: ds/dt = ds/de ed + edd (e != 0)
-    edd = sp.Symbol("e_dd", real=True)
+    edd = EDDOT
     s_f = L.surface_ftsm()
     total = sp.diff(s_f.subs(e, E), E) * ed + edd
     st_pos = prove_identity(sp.simplify(total - (L.ds_de("ftsm").subs(e, E) * ed + edd)),
@@ -356,10 +431,16 @@ def sdot_claim() -> Claim:
     totneg = sp.diff(s_f.subs(e, -E), E) * (-ed) + edd  # d/dt with e = -E(t), E' = -ed
     st_neg = prove_identity(sp.simplify(totneg - (L.ds_de("ftsm").subs(e, -E) * ed + edd)),
                             "e < 0: the same with |e|^(p/q-1) (sig reading of e^(p/q))")
+    st_pos = _with_expr(st_pos, sp.Eq(SDOT, disp(total), evaluate=False))
+    printed11 = sp.Eq(SDOT, EDDOT + EDOT * (alpha + beta * (P_ / Q_) * e ** (P_ / Q_ - 1)),
+                      evaluate=False)
+    derived11 = sp.Eq(SDOT, disp(L.ds_de("ftsm") * ed + edd), evaluate=False)
     return Claim("sdot-11", "(11)", "Derivative of the fast terminal surface",
                  "s1' = e'' + e'(alpha + beta (p/q) e^(p/q-1))",
                  "s' = e'' + e'(alpha + beta (p/q)|e|^(p/q-1)) for e != 0 (sig reading)",
-                 (st_pos, st_neg), law="ftsmc")
+                 (st_pos, st_neg), law="ftsmc",
+                 paper_expr=(sp.Eq(L.s, disp(s_f), evaluate=False), printed11),
+                 derived_expr=(derived11,))
 
 
 @cache
@@ -375,10 +456,13 @@ def ueq_claim() -> Claim:
     mine = ue.subs({L.f: 2 * w * x4 + w**2 * x1 + gx, L.Dk: Dx, L.xdd: x2d_dot})
     same = prove_identity(sp.simplify(printed - mine), "the workbench's u_eq is the printed "
                           "(14) with f = 2 w x4 + w^2 x1 + g_x")
+    st = _with_expr(st, sp.Eq(SDOT, 0, evaluate=False))
+    same = _with_expr(same, sp.Eq(U_EQ, disp(printed), evaluate=False))
     return Claim("ueq-14", "(12)-(14)", "Equivalent control", "u_xeq = -(2 w x4 + w^2 x1 + g_x "
                  "+ D_x - x2d') - (x2 - x2d)(alpha + beta (p/q) e^(p/q-1))",
                  "as printed; it needs D_x known (the unknown-D variant drops it)", (st, same),
-                 law="ftsmc")
+                 law="ftsmc", paper_expr=(sp.Eq(U_EQ, disp(printed), evaluate=False),),
+                 derived_expr=(sp.Eq(U_EQ, disp(ue), evaluate=False),))
 
 
 @cache
@@ -390,14 +474,25 @@ def lyapunov_claim() -> Claim:
         sd = L.sdot(law, L.u_eq(law, floor=False) + us).subs(L.Dk, L.Dist)
         steps.append(on_branches(sd - us, f"{law}: s' = u_s under u = u_eq + u_s, known D "
                                  "(16) -> (17)"))
-    steps.append(prove_nonneg(k * sp.Abs(sv), "V' = s u_s = -k|s| < 0 for s != 0 (18)",
-                              strict=True))
-    steps.append(prove_identity(sp.diff(sv**2 / 2, sv) - sv, "V1 = s^2/2 gives V1' = s s' (15)"))
+    for i in range(2):
+        steps[i] = _with_expr(steps[i], sp.Eq(SDOT, U_S, evaluate=False))
+    vdot = sp.Eq(VDOT, sv * L.u_switch("sign", sv), evaluate=False)
+    steps.append(_with_expr(prove_nonneg(k * sp.Abs(sv), "V' = s u_s = -k|s| < 0 for s != 0 "
+                                         "(18)", strict=True),
+                            (vdot, sp.Lt(-k * sp.Abs(sv), 0, evaluate=False))))
+    steps.append(_with_expr(prove_identity(sp.diff(sv**2 / 2, sv) - sv, "V1 = s^2/2 gives V1' "
+                                           "= s s' (15)"),
+                            sp.Eq(VDOT, sp.Symbol("s") * SDOT, evaluate=False)))
     return Claim("lyapunov-17", "(15)-(19)", "Lyapunov argument for the control (19)",
                  "V1' = s1 u_xs < 0 with u_xs = -k1 sgn(s1)",
                  "proved for e != 0 with D known exactly and continuous-time control; the "
                  "reaching is finite-time (V' = -k|s| = -k sqrt(2 V)), stronger than the "
-                 "asymptotic stability the paper states", tuple(steps), law="ftsmc")
+                 "asymptotic stability the paper states", tuple(steps), law="ftsmc",
+                 paper_expr=(sp.Lt(sp.Symbol("s") * U_S, 0, evaluate=False),
+                             sp.Eq(U_S, L.u_switch("sign", sp.Symbol("s")), evaluate=False)),
+                 derived_expr=(sp.Eq(VDOT, -k * sp.Abs(sv), evaluate=False),
+                               sp.Eq(VDOT, -k * sp.sqrt(2 * sp.Symbol("V_1", positive=True)),
+                                     evaluate=False)))
 
 
 @cache
@@ -409,11 +504,16 @@ def printed_exponent_claim() -> Claim:
     sd = L.sdot("ftsmc", printed_u).subs({L.Dk: L.Dist, r: pp / qq})
     resid = sp.simplify(sd - us).subs(e, E)
     ev = identity_evidence(resid, ranges={pp: (1, 4), qq: (5, 9)}, seed=SEED)
-    step = Step("with the exponent (p-1)/q of (16)/(19) as extracted, s' = u_s", ev)
+    step = Step("with the exponent (p-1)/q of (16)/(19) as extracted, s' = u_s", ev,
+                sp.Eq(SDOT - U_S, disp(sp.factor(resid).xreplace({E: sp.Abs(e)})),
+                      evaluate=False))
     return Claim("printed-exponent-19", "(16), (19)", "The exponent in (16) and (19)",
                  "u_x = ... - (x2 - x2d)(alpha + beta (p/q)(e1x)^((p-1)/q)) - k1 sgn(s1)",
                  "(p-1)/q != p/q - 1 unless q = 1: with the extracted exponent (17) fails; the "
-                 "workbench uses p/q - 1 of (11), (14)", (step,), law="ftsmc (printed (19))")
+                 "workbench uses p/q - 1 of (11), (14)", (step,), law="ftsmc (printed (19))",
+                 paper_expr=(sp.Eq(sp.Symbol("u_x"), disp(printed_u), evaluate=False),),
+                 derived_expr=(sp.Eq(sp.Symbol("u_x"), disp(L.u_eq("ftsmc", floor=False) + us),
+                                     evaluate=False),))
 
 
 @cache
@@ -437,6 +537,15 @@ def singular_claim() -> Claim:
     floor = prove_identity(sp.simplify(jump - 2 * beta * eps**r * (1 - r)),
                            "floor: the uncancelled change of s across |e| < e_floor is "
                            "int beta r (|e|^(r-1) - e_floor^(r-1)) de = 2 beta e_floor^r (1-r)")
+    off = _with_expr(off, sp.Eq(sp.Limit(disp(edp * E ** (-c)).xreplace({edp: EDOT}), EPOS, 0,
+                                         "+"), sp.oo, evaluate=False))
+    on_form = disp((-alpha * sp.Abs(e) ** r - beta * sp.Abs(e) ** (2 * r - 1)) * sp.sign(e))
+    on = _with_expr(on, sp.Eq(disp((-alpha * e - beta * L.sig(e, r)) * sp.Abs(e) ** (r - 1)),
+                              on_form, evaluate=False))
+    jump_disp = sp.Eq(disp(2 * sp.Integral(beta * r * (E ** (r - 1) - eps ** (r - 1)),
+                                           (E, 0, eps))), disp(2 * beta * eps**r * (1 - r)),
+                      evaluate=False)
+    floor = _with_expr(floor, jump_disp)
     sgn0 = Step("sgn(s) at s = 0 and sgn(e) at e = 0: the implementation uses numpy.sign "
                 "(0 at 0); tanh(s/phi) is smooth; the fuzzy D = 0 gives a = 1, b = 0",
                 Unproven("an implementation convention, not a theorem (Filippov solutions "
@@ -446,7 +555,12 @@ def singular_claim() -> Claim:
                  "beta (p/q)|e|^(p/q-1) e' is unbounded at e = 0 off the surface for every "
                  "p/q < 1, and on it for p/q < 1/2; the implementation floors |e| at e_floor "
                  "(named gain), leaving a change of s of at most 2 beta e_floor^(p/q)(1-p/q) "
-                 "per crossing", (off, on, floor), remarks=(sgn0,), law="ftsmc")
+                 "per crossing", (off, on, floor), remarks=(sgn0,), law="ftsmc",
+                 derived_expr=(sp.Eq(sp.Symbol("u_sing"), disp(-ed * beta * r * sp.Abs(e)
+                                                              ** (r - 1)), evaluate=False),
+                               sp.Eq(sp.Symbol("u_sing"), disp(-ed * beta * r * sp.Max(
+                                   sp.Abs(e), eps) ** (r - 1)), evaluate=False),
+                               jump_disp))
 
 
 def _tanh_map_tail(k_: float, phi_: float, dt_: float, s0: float, n: int = 2000,
@@ -481,6 +595,9 @@ def sampled_tanh_claim() -> Claim:
     step_map = sk - dt_ * k * sp.tanh(sk / phi)
     mult = prove_identity(sp.diff(step_map, sk).subs(sk, 0) - (1 - k * dt_ / phi),
                           "d s_{k+1}/d s_k at 0 = 1 - k dt/phi (the sampled boundary layer)")
+    s_next = sp.Symbol("s_k+1", real=True)
+    mult = _with_expr(mult, sp.Eq(At(sp.Derivative(s_next, sk), 0), 1 - k * dt_ / phi,
+                                  evaluate=False))
     g = P.DEFAULT_GAINS
     ok_tail = _tanh_map_tail(g["k"], g["phi"], P.DT_SAMPLE, 1.0)
     nominal = Step(f"at the paper's dt = {P.DT_SAMPLE} s (k dt/phi = "
@@ -503,6 +620,9 @@ def sampled_tanh_claim() -> Claim:
                  "under a zero-order hold the boundary layer is stable iff k dt/phi < 2: true at "
                  "dt = 0.01 s for the defaults (0.4), a limit cycle at dt = 0.1 s (4)",
                  (mult, nominal, refute), remarks=(), law="tanh",
+                 paper_expr=(sp.Eq(U_S, L.u_switch("tanh"), evaluate=False),),
+                 derived_expr=(sp.Eq(s_next, step_map, evaluate=False),
+                               sp.Lt(sp.Abs(1 - k * dt_ / phi), 1, evaluate=False)),
                  numbers={"tail_dt_0.01": ok_tail, "tail_dt_0.1": tail})
 
 
@@ -611,12 +731,25 @@ def fuzzy_claim() -> Claim:
                    Search({"N": "[1e-2, 1e2] s/m", "M": "[1e-2, 1e2] s/m",
                            "D": "[1e-6, 1e3] m/s"}, "log-uniform random sampling", 2000, best,
                           bpt, SEED, relative=True))
+    blend = _with_expr(blend, sp.Eq(SDOT, (1 - a) * Fs + b * us, evaluate=False))
+    vd_id = _with_expr(vd_id, sp.Eq(VDOT, vdot, evaluate=False))
+    lim0 = _with_expr(lim0, sp.Eq(sp.Limit((1 - a) / b, L.dist, 0, "+"), L.N / L.M,
+                                  evaluate=False))
+    limoo = _with_expr(limoo, sp.Eq(sp.Limit((1 - a) / b, L.dist, sp.oo), 1, evaluate=False))
+    sup = dataclasses.replace(sup, expr=sp.Le((1 - a) / b, sp.Max(1, L.N / L.M),
+                                              evaluate=False))
+    Fbar = sp.Symbol("Fbar", positive=True)
+    weights = (sp.Eq(sp.Symbol("a"), a, evaluate=False), sp.Eq(sp.Symbol("b"), b,
+                                                                evaluate=False))
+    u20 = sp.Eq(sp.Symbol("u"), sp.Symbol("a") * U_EQ + sp.Symbol("b") * U_S, evaluate=False)
     derived = ("V1' = (1-a)F s - b k|s|; the reaching condition holds at every state with "
                "|F| <= Fbar iff k >= Fbar max(1, N/M) (strict if N = M), F the drift the "
                "equivalent control cancels, not the disturbance")
     cond = Claim("fuzzy-condition", "(20)-(22)", "Reaching condition of the fuzzy blend",
                  "-", derived, (blend, vd_id, lim0, limoo, sup), law="fuzzy",
-                 remarks=(sup_num,))
+                 remarks=(sup_num,), paper_expr=(u20, *weights),
+                 derived_expr=(sp.Eq(VDOT, vdot, evaluate=False),
+                               sp.Ge(k, Fbar * sp.Max(1, L.N / L.M), evaluate=False)))
     # the paper's claim as stated: V1' < 0 whatever k > 0 (no condition is given)
     dg = P.DEFAULT_GAINS
     st = {"e": 0.1, "ed": 2.0, "f": 0.0, "D": 0.0, "xdd": 0.0, "d": 0.0, "alpha": dg["alpha"],
@@ -637,7 +770,9 @@ def fuzzy_claim() -> Claim:
                   "the fuzzy coefficients put the modes on the sliding surface in a short, "
                   "limited time (the Lyapunov argument is given only for (19))",
                   derived + "; refuted for the default k = 2 m/s^2 at a reachable state",
-                  (refute,), law="fuzzy", numbers={"vdot_exact": v_exact, "vdot_fd": v_fd})
+                  (refute,), law="fuzzy", numbers={"vdot_exact": v_exact, "vdot_fd": v_fd},
+                  paper_expr=(u20, sp.Lt(VDOT, 0, evaluate=False)),
+                  derived_expr=(sp.Eq(VDOT, vdot, evaluate=False),))
     return cond, paper
 
 
@@ -652,6 +787,13 @@ def fuzzy_finite_time_claim() -> Claim:
                          "antiderivative of 1/(k(1 - exp(-mu s)))")
     lim = prove_identity(1 / sp.limit(anti.subs(S, 1) - anti.subs(S, se), se, 0, "+"),
                          "t(s0 -> s_e) -> oo as s_e -> 0: s = 0 is reached only asymptotically")
+    t_reach = sp.Symbol("t", positive=True)
+    time_int = sp.Eq(t_reach, sp.Integral(1 / (k * (1 - sp.exp(-mu * S))), (S, se, 1)),
+                     evaluate=False)
+    chk = _with_expr(chk, sp.Eq(sp.Derivative(anti, S), 1 / (k * (1 - sp.exp(-mu * S))),
+                                evaluate=False))
+    lim = _with_expr(lim, sp.Eq(sp.Limit(anti.subs(S, 1) - anti.subs(S, se), se, 0, "+"), sp.oo,
+                                evaluate=False))
     g = P.DEFAULT_GAINS
     muv = g["M"] / math.sqrt(1 + g["alpha"] ** 2)
     s0v, sev = 1.0, 1e-3
@@ -685,7 +827,11 @@ def fuzzy_finite_time_claim() -> Claim:
                  f"is never reached; |s| = 1 -> 1e-3 m/s takes {t_closed:.2f} s with F = 0, "
                  f"where the FTSMC reaches s = 0 in {t_ftsmc:.2f} s",
                  (chk, lim, step), law="fuzzy",
-                 numbers={"t_closed": t_closed, "t_ode": t_ode, "t_ftsmc": t_ftsmc})
+                 numbers={"t_closed": t_closed, "t_ode": t_ode, "t_ftsmc": t_ftsmc},
+                 derived_expr=(sp.Eq(sp.Symbol("sdot"), -k * (1 - sp.exp(-mu * S)),
+                                     evaluate=False), time_int,
+                               sp.Eq(t_reach, anti.subs(S, 1) - anti.subs(S, se),
+                                     evaluate=False)))
 
 
 @cache
@@ -704,11 +850,20 @@ def fuzzy_invariance_claim() -> Claim:
     step = Step("on the sliding surface a = 1 and b = 0, so the surface is invariant",
                 Search({"state": "s_x = 0, s_y = 1 m/s, F_x = 0.5 m/s^2"}, "constructed", 1,
                        w.margin, w.point, SEED, w))
+    s_ax = sp.symbols("s_x s_y s_z", real=True)
+    Fx_s = sp.Symbol("F_x", real=True)
+    dist_def = sp.Eq(L.dist, L.fuzzy_distance(s_ax), evaluate=False)
+    step = dataclasses.replace(step, expr=sp.Eq(sp.Symbol("sdot_x"), (1 - a) * Fx_s,
+                                                evaluate=False))
     return Claim("fuzzy-invariance", "(20)-(22)", "Invariance of one axis's surface",
                  "should the modes be on the sliding surface, a = 1 and b = 0",
                  "a = 1 only when all three s_i = 0 (D of (22) sums the axes): an axis on its "
                  "surface is pushed off by (1 - a) F while another axis is not",
-                 (step,), law="fuzzy", numbers={"s_x_dot": sdx})
+                 (step,), law="fuzzy", numbers={"s_x_dot": sdx},
+                 paper_expr=(sp.Eq(sp.Symbol("a"), 1, evaluate=False),
+                             sp.Eq(sp.Symbol("b"), 0, evaluate=False)),
+                 derived_expr=(dist_def, sp.Eq(sp.Symbol("a"), a, evaluate=False),
+                               sp.Eq(sp.Symbol("sdot_x"), (1 - a) * Fx_s, evaluate=False)))
 
 
 # --- PD sliding mode -----------------------------------------------------------------------
@@ -726,13 +881,20 @@ def pd_claim() -> Claim:
     tol = sp.Symbol("epsilon", positive=True)
     t_tol = prove_identity(sp.simplify(sol.subs(tt, sp.log(e0 / tol) / lam) - tol),
                            "|e| = epsilon at t = ln(|e0|/epsilon)/lambda")
+    e_t, t_eps = sp.Function("e")(tt), sp.Symbol("t_epsilon", positive=True)
+    cancel = _with_expr(cancel, sp.Eq(SDOT, U_S, evaluate=False))
+    slide = _with_expr(slide, sp.Eq(e_t, sol, evaluate=False))
+    t_tol = _with_expr(t_tol, sp.Eq(t_eps, sp.log(e0 / tol) / lam, evaluate=False))
     return Claim("pd-smc", "(Figs. 3-6, 'classic PD sliding mode')",
                  "The PD sliding mode (linear surface)",
                  "the classic PD sliding mode tracks in 8 s",
                  "s = e' + lambda e: reaching as in (17) (t_r = |s0|/k, known D), then "
                  "exponential sliding e = e0 exp(-lambda t): no finite settling time; "
                  "|e| <= epsilon after ln(|e0|/epsilon)/lambda",
-                 (cancel, slide, never, t_tol), law="pdsmc")
+                 (cancel, slide, never, t_tol), law="pdsmc",
+                 derived_expr=(sp.Eq(L.s, disp(L.surface_pd()), evaluate=False),
+                               sp.Eq(e_t, sol, evaluate=False),
+                               sp.Eq(t_eps, sp.log(e0 / tol) / lam, evaluate=False)))
 
 
 # --- (8)-(10): reference ---------------------------------------------------------------------
@@ -770,6 +932,9 @@ def cubic_claim() -> Claim:
             steps.append(Step(f"{REF.AXES[i]}: printed c{j} = exact rounded to 3 significant "
                               "digits", Identity(res, "exact rational arithmetic",
                                                  point_witness=wr)))
+    cs = sp.symbols("c_0:4", real=True)
+    cubic8 = sp.Eq(sp.Symbol("x_d"), sum(ci * t_**j for j, ci in enumerate(cs)),
+                   evaluate=False)
     miss = REF.endpoint_miss()
     # the printed coefficients miss the endpoint: exact-arithmetic residual and float re-check
     pr = [sum(sp.Rational(repr(float(P.CUBIC_PRINTED[i, j]))) * T**j for j in range(4))
@@ -789,7 +954,7 @@ def cubic_claim() -> Claim:
                      f"{v:+.2e}" for v in miss["velocity_m_s"]) + " m/s",
                  tuple(steps), numbers={"exact": [[str(x) for x in row] for row in exact],
                                         "exact_float": REF.coefficients().tolist(), **miss},
-                 scope="scenario")
+                 scope="scenario", paper_expr=(cubic8,))
 
 
 @cache
@@ -869,12 +1034,15 @@ def dynamics_claim() -> Claim:
     printed, derived = L.rotating_frame_accel()
     steps = [prove_identity(sp.expand(a - b), f"axis {ax}: printed (4) = -2 W x v - W x (W x r)")
              for ax, a, b in zip("xyz", printed, derived, strict=True)]
+    accel = sp.MatrixSymbol("a_rot", 3, 1)
     rel = abs(P.OMEGA_PRINTED - P.OMEGA) / P.OMEGA
     return Claim("dynamics-1", "(1), (3), (4)", "Rotating-frame dynamics",
                  "x'' - 2 w y' - w^2 x = g_x + u_x + D_x, ...; w = 3.3118e-4",
                  f"the Coriolis and centrifugal terms of a frame spinning about z; w printed "
                  f"differs from the measured 1639.389232 deg/day by {rel:.1e} relative",
-                 tuple(steps), numbers={"omega_measured": P.OMEGA, "relative_diff": rel})
+                 tuple(steps), numbers={"omega_measured": P.OMEGA, "relative_diff": rel},
+                 paper_expr=(sp.Eq(accel, sp.Matrix(printed), evaluate=False),),
+                 derived_expr=(sp.Eq(accel, sp.Matrix(derived), evaluate=False),))
 
 
 @cache
@@ -895,11 +1063,26 @@ def gravity_claim() -> Claim:
     Uprinted = Step("U as extracted (M1/r1 + M2/r2, no G) has dU/dx = printed g_x",
                     identity_evidence(ux, ranges=ranges, seed=SEED, method="sympy.expand",
                                       simplified=sp.expand(ux)))
+    r1s, r2s = sp.symbols("r_1 r_2", positive=True)
+
+    def radii(ex: sp.Expr) -> sp.Expr:  # the distances to the mass points as r_1, r_2
+        return ex.subs({GR._rho(GR.x1, GR.y1, GR.z1) ** 2: r1s ** 2,
+                        GR._rho(GR.x2, GR.y2, GR.z2) ** 2: r2s ** 2}).subs(
+            {GR._rho(GR.x1, GR.y1, GR.z1): r1s, GR._rho(GR.x2, GR.y2, GR.z2): r2s})
+    gx = sp.Symbol("g_x", real=True)
+    st[0] = _with_expr(st[0], sp.Eq(radii(pr[0]), radii(der[0]), evaluate=False))
+    attract = _with_expr(attract, sp.Eq(radii(pr[0]), -radii(der[0]), evaluate=False))
+    Uprinted = _with_expr(Uprinted, sp.Eq(sp.Derivative(GR.potential_printed(), GR.x),
+                                          radii(pr[0]), evaluate=False))
     return Claim("gravity-2", "(2)", "Two-mass-point gravity", "g_x = dU/dx = G M1 (x-x1)/r1^3 "
                  "+ G M2 (x-x2)/r2^3", "g = grad(G M1/r1 + G M2/r2) = -G M1 (x-x1)/r1^3 - ...: "
                  "the printed g has the wrong sign (repulsive) and U lacks G (possibly lost "
                  "in extraction; the simulator uses the derived attraction)",
-                 tuple(st) + (Uprinted,), remarks=(attract,))
+                 tuple(st) + (Uprinted,), remarks=(attract,),
+                 paper_expr=(sp.Eq(sp.Symbol("U"), radii(GR.potential_printed()), evaluate=False),
+                             sp.Eq(gx, radii(pr[0]), evaluate=False)),
+                 derived_expr=(sp.Eq(sp.Symbol("U"), radii(GR.potential()), evaluate=False),
+                               sp.Eq(gx, radii(der[0]), evaluate=False)))
 
 
 @cache
