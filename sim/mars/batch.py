@@ -42,8 +42,9 @@ What is recorded per case (``BatchResult``):
   peak_thrust_after_arrival: per axis, max |F_i| after the limit (N) over the accepted nodes
     from the first one where the axis is in its landing band (|r_i| <= tol_r and
     |v_i| <= tol_v, the land_tol of the landing criterion) on, until the case ends (with
-    stop="t_max" also after landing); NaN if the axis never enters its band at a node.
-    The spikes after arrival of issue 17;
+    stop="t_max" also after landing); NaN if the axis never enters its band at a node.  A
+    node whose command is blown up is not counted (the case ends there: at t = 0 a case
+    that has landed there with such a command).  The spikes after arrival of issue 17;
     time_saturated: node-sampled time (left-endpoint rule) with the command
     limited on some axis, until landing; min_altitude and ground_contact (r_z < 0 before
     landing: the paper's Fig. 8 "collision"), from the minimum of the cubic Hermite interpolant

@@ -227,7 +227,8 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
     if X[XBLOWN] != 0.0 and not (S[LANDED] != 0.0 and stop_landing):
         S[BLOWN] = X[XBLOWN]  # the command at t = 0 is blown up: nothing can be flown
         return True
-    _arrival_fn(y, X, S, tol_r, tol_v)  # noqa: F821
+    if X[XBLOWN] == 0.0:  # a blown-up command at t = 0 is never flown (landed there)
+        _arrival_fn(y, X, S, tol_r, tol_v)  # noqa: F821
     return S[LANDED] != 0.0 and stop_landing
 
 

@@ -137,7 +137,7 @@ def _start_row(rhs: ClosedLoopRHS, y0: np.ndarray, eps: float, landed0: bool, *,
     in their band unless it is blown up (as simulate_batch, NaN otherwise)."""
     y = y0 if y is None else y
     after = np.full(3, np.nan)
-    if not blown:
+    if not (blown or rhs.blown(y0)):  # as simulate_batch: a blown-up command is never flown
         after = after_arrival(y0[None, :3], y0[None, 3:6], rhs.force(y0[None, :])[0], land_tol)
     s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
     tf = np.where(np.abs(s0) <= eps, 0.0, np.nan)

@@ -106,3 +106,18 @@ def test_peak_after_arrival_is_null_before_arrival_and_agrees_with_the_reference
     assert np.all(np.isfinite(a.peak_thrust_after_arrival))
     np.testing.assert_allclose(a.peak_thrust_after_arrival, b.peak_thrust_after_arrival,
                                rtol=0.05)
+
+
+def test_a_blown_up_command_is_never_a_peak_after_arrival() -> None:
+    """Found by the million-state campaign: a state landed at t = 0 (|r|, |v| <= 0.1) with
+    r_x = 9e-71 m, v_x = 2.6e-3 m/s asks for |s1|^(q1-1) v far beyond BLOWUP_ACCEL m0 there;
+    the case ends at once, that command is never flown, and the peak after arrival is null,
+    not that number (in every mode)."""
+    r0 = np.array([[9.092454759081029e-71, 0.0, 0.0]])
+    v0 = np.array([[0.002586392496802433, 0.0001090525739392657, 0.0]])
+    m0 = [1505.037574524383]
+    for res in (simulate_batch(r0, v0, m0, G), simulate_batch(r0, v0, m0, G, method="dopri5"),
+                simulate_reference(r0, v0, m0, G)):
+        assert res.landed[0] and res.landing_time[0] == 0.0
+        assert np.isnan(res.peak_thrust_after_arrival[0, 0])
+        assert np.all(res.peak_thrust_stages == 0.0)
