@@ -79,6 +79,9 @@ def _check(ctx, X0, res):
     m0 = X0[6, fin]
     assert np.all(m > 0) and np.all(m <= m0)
     assert np.all(m >= ctx.opts.m_dry * (1 - 1e-12))
+    # stage peaks include the node peaks (every rhs call of the accepted steps)
+    assert np.all(c["peak_thrust_stages"][fin] >= c["peak_thrust"][fin])
+    assert np.all(c["peak_thrust_cmd_stages"][fin] >= c["peak_thrust_cmd"][fin])
     exc = c["thrust_excess_saturated"]
     assert np.all(~(exc > 1e-9 * P.T_MAX)), exc  # NaN (no saturated node) or <= 0
     for i in range(n):
