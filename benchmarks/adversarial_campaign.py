@@ -12,7 +12,8 @@ commands blow up) unless ``--thrust-max``, stop at landing, t_max 120 s.
 Printed per method: the count per outcome (lgw.sim.results), "unexplained" (a case whose
 recorded quantities contradict its outcome: landed outside the tolerances, propellant
 exhausted without exactly m_dry / m0 - m_dry, horizon before t_max, ...), "impossible" (fuel
-outside [0, m0 - m_dry], end mass below m_dry, a peak above BLOWUP_ACCEL m0 or negative),
+outside [0, m0 - m_dry], end mass below m_dry, a peak (node, stage or after arrival) above
+BLOWUP_ACCEL m0 or negative, a stage peak below the node peak),
 "nonfinite in output" (a NaN/inf in a quantity the case's outcome says is a number), and with
 ``--method both`` the RK4/dopri5 outcome agreement with the disagreeing pairs.  Chunks of
 ``--chunk`` cases keep the memory flat; the seed makes every run reproducible.
@@ -74,9 +75,19 @@ def audit(res, m_dry: float = M_DRY, t_max: float = T_MAX) -> dict[str, np.ndarr
                        & ((res.y_end[:, 6] >= m_dry) | (name == "nonfinite"))
                        & np.all((res.peak_thrust >= 0) & (res.peak_thrust <= blow), axis=1)
                        & np.all((res.peak_thrust_unsat >= 0) & (res.peak_thrust_unsat <= blow),
-                                axis=1))
+                                axis=1)
+                       # stage peaks: a thrust, and at least the node peaks they include
+                       & np.all((res.peak_thrust_stages >= res.peak_thrust)
+                                & (res.peak_thrust_stages <= blow), axis=1)
+                       & np.all((res.peak_thrust_unsat_stages >= res.peak_thrust_unsat)
+                                & (res.peak_thrust_unsat_stages <= blow), axis=1)
+                       # after arrival: a thrust, or NaN (null) if the axis never arrived
+                       & np.all(np.isnan(res.peak_thrust_after_arrival)
+                                | ((res.peak_thrust_after_arrival >= 0)
+                                   & (res.peak_thrust_after_arrival <= blow)), axis=1))
     must = np.column_stack([res.fuel, res.time_saturated, res.min_altitude, res.t_end, t,
-                            res.peak_thrust, res.peak_thrust_unsat])
+                            res.peak_thrust, res.peak_thrust_unsat, res.peak_thrust_stages,
+                            res.peak_thrust_unsat_stages])
     bad_out = ~np.all(np.isfinite(must), axis=1)
     bad_out |= landed & ~np.all(np.isfinite(np.column_stack([res.r_land, res.v_land])), axis=1)
     # a case whose outcome is "nonfinite" carries a non-finite end state by definition: it is

@@ -8,10 +8,17 @@ generated law, its hooks and the integrator, see ``lgw.sim.integrate``) is writt
 ``NUMBA_CACHE_DIR`` if set).  A second process in the same environment imports the module and
 loads the machine code instead of compiling (seconds instead of ~30 s).
 
-The key is a hash of everything the machine code depends on that numba does not check itself:
-the law's expression (its ``srepr``), the lgw version, and the source of the code generators,
-the integrator and the system's hooks (numba validates only the generated file's own stamp).
-A changed law or a changed integrator gives a new file; old files are simply never read again.
+The file name carries a hash of the full generated module text itself, the lgw version and
+the source of the modules the text imports compiled helpers from (``module_for``; numba
+validates only the generated file's own stamp, not its imports).  Two different texts never
+share a file: a process that generates a wrong text (e.g. one running while a hook's source
+file is edited, where ``inspect.getsource`` reads the new file with the old line numbers) writes
+it under a name no correct process computes.  The helpers' sources are read once per process,
+when the kernel module asks for them at its own import (``imported_sources``), so an edit made
+while a process runs does not re-key that process's stale code as current.  An existing file
+is imported only if its text is exactly the expected one; a corrupted, truncated or foreign
+file is rewritten (atomically: a temporary file in the same directory, then ``os.replace``),
+and numba, whose stamp is the file's mtime and size, recompiles it.
 
 Cache directory: ``$LGW_CACHE_DIR`` if set, else ``~/.cache/lgw`` (``$XDG_CACHE_HOME/lgw`` when
 that is set).  If it cannot be created or written, a warning says so and a temporary directory
@@ -71,26 +78,50 @@ def key(parts: Iterable[str]) -> str:
 
 
 def source_of(*modules: ModuleType) -> list[str]:
-    """The source text of modules (for the key)."""
+    """The source text of modules, as on disk now."""
     return [Path(m.__file__).read_text() for m in modules]
+
+
+_IMPORTED: dict[str, str] = {}
+
+
+def imported_sources(*modules: ModuleType) -> list[str]:
+    """The source text of modules as first read in this process (then kept: an edit made
+    while the process runs does not change what it keys its kernels by)."""
+    out = []
+    for m in modules:
+        f = str(Path(m.__file__).resolve())
+        if f not in _IMPORTED:
+            _IMPORTED[f] = Path(f).read_text()
+        out.append(_IMPORTED[f])
+    return out
 
 
 _LOADED: dict[str, ModuleType] = {}
 
 
-def load_module(stem: str, source: Callable[[], str]) -> ModuleType:
-    """Write ``source()`` as ``<cache>/<stem>.py`` (if not there yet) and import it.
-
-    The stem carries the key, so an existing file is the right one: it is neither regenerated
-    (that takes SymPy seconds) nor rewritten (numba's stamp of it stays valid).  The file is
-    written atomically (another process may be writing the same one)."""
-    if stem in _LOADED:
-        return _LOADED[stem]
-    path = cache_dir() / f"{stem}.py"
-    if not path.exists():
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(source())
+def _write_atomic(path: Path, text: str) -> None:
+    """``text`` into ``path`` via a temporary file in the same directory and ``os.replace``
+    (a concurrent reader sees the old file or the new one, never a part)."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
         os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _read(path: Path) -> str | None:
+    """The file's text, or None if it is missing or not UTF-8 (a corrupted entry)."""
+    try:
+        return path.read_bytes().decode("utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+
+
+def _import(stem: str, path: Path) -> ModuleType:
     name = f"lgw_kernel_{stem}"  # top-level: numba re-imports it by name from its cache
     spec = importlib.util.spec_from_file_location(name, path)
     mod = importlib.util.module_from_spec(spec)
@@ -98,6 +129,38 @@ def load_module(stem: str, source: Callable[[], str]) -> ModuleType:
     spec.loader.exec_module(mod)
     _LOADED[stem] = mod
     return mod
+
+
+def text_key(prefix: str, text: str, deps: Iterable[str] = ()) -> str:
+    """The file stem of a generated module: ``<prefix>_<hash>``, the hash of the lgw version,
+    the module text and ``deps`` (the sources of what it imports)."""
+    import lgw
+    return f"{prefix}_{key([lgw.__version__, text, *deps])}"
+
+
+def module_for(prefix: str, text: str, deps: Iterable[str] = ()) -> ModuleType:
+    """Import the generated module ``text`` from ``<cache>/<text_key(...)>.py``, writing it
+    first if the file is missing or its text is not exactly ``text`` (corrupted, truncated)."""
+    stem = text_key(prefix, text, deps)
+    if stem in _LOADED:
+        return _LOADED[stem]
+    path = cache_dir() / f"{stem}.py"
+    if _read(path) != text:
+        _write_atomic(path, text)
+    return _import(stem, path)
+
+
+def load_module(stem: str, source: Callable[[], str]) -> ModuleType:
+    """Write ``source()`` as ``<cache>/<stem>.py`` (if not there yet) and import it.
+
+    For callers whose stem is already a hash of the text (tests, tools): an existing file is
+    taken as is, without calling ``source``.  Kernels use ``module_for``, which checks it."""
+    if stem in _LOADED:
+        return _LOADED[stem]
+    path = cache_dir() / f"{stem}.py"
+    if not path.exists():
+        _write_atomic(path, source())
+    return _import(stem, path)
 
 
 def is_cached(dispatcher) -> bool:

@@ -210,10 +210,9 @@ def test_cli_group_builds():
 def _fake_result(n: int):
     """A BatchResult of n cases without flying (numpy only): case i lands at t = i s except
     cases 7 (non-finite) and 40 (out of propellant)."""
-    from lgw.sim.mars.batch import ARRAY_FIELDS, BatchResult
+    from lgw.sim.mars.batch import ARRAY_FIELDS, VECTOR_FIELDS, BatchResult
 
-    vec = {"r_land", "v_land", "peak_thrust", "peak_thrust_unsat", "t_s1", "t_s2",
-           "t_s1_last_exit", "t_s2_last_exit"}
+    vec = set(VECTOR_FIELDS)
     kw = {}
     for k in ARRAY_FIELDS:
         shape = (n, 3) if k in vec else (n, 7) if k == "y_end" else (n,)

@@ -45,17 +45,34 @@ AUX = {"eh": (0, 1), "ev": (1, 3), "d_orbit": (4, 3), "eq": (7, 4), "ew": (11, 3
        "V2a_part": (35, 1), "B0du_o": (36, 3), "B0du_a": (39, 3), "height": (42, 1),
        "quat_norm_err": (43, 1), "failure_factor": (44, 1), "uco": (45, 3), "nzo": (48, 1),
        "nza": (49, 1), "f2a": (50, 3)}
-NX = 53
+# after the sampled signals: over the rhs calls of the current step attempt (reset at its
+# first stage), the max delivered thrust (53) and the max commanded magnitude (54)
+XPKT = 53
+XPKTC = 54
+# 1.0 if a rhs call of the current step attempt asked for a blown-up command (sys_rhs)
+XBLOWN = 55
+NX = 56
 # outcome codes (names in lgw.sim.lunar.outcomes.OUTCOMES)
-COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM = range(6)
+COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM, BLOWN = range(7)
+# A delivered thrust above BLOWUP_ACCEL m0 (N; m0 the case's initial mass) is no thrust (1e5
+# m/s^2, ~10^4 g, as seed 000's lgw.sim.mars.batch.BLOWUP_ACCEL; the Section 5 case asks for
+# ~7 m/s^2): a step whose stage asks for it (or for any thrust at a mass <= 0) is far too large
+# for the dynamics, and an event located on its interpolant is meaningless (found by
+# benchmarks/adversarial_lunar.py: "propellant exhausted" after one step at -3.5e14 kg, stage
+# thrusts of 1e35 N with the "nominal" reading of (24), which does not limit the thrust)
+BLOWUP_ACCEL = 1e5
 # tracker slots
-PKT, PKTC, PKM, TSO, TSA, NENT, TENT, TEXIT, TFAIL, TEXC, V2OMAX, V2AMAX, HMIN, OUT, TOUT = \
-    range(15)
-NS = 15
+(PKT, PKTC, PKM, TSO, TSA, NENT, TENT, TEXIT, TFAIL, TEXC, V2OMAX, V2AMAX, HMIN, OUT, TOUT,
+ PKTS, PKTCS) = range(17)
+NS = 17
+# peak_thrust, peak_thrust_cmd: at the nodes (t = 0 and each accepted step's left node);
+# peak_thrust_stages, peak_thrust_cmd_stages: also over every rhs evaluation of those steps
+# (trial states and new node; >= the node peaks), as seed 000 (lgw.sim.mars.batch)
 RESULT_FIELDS = ("outcome", "t_outcome", "peak_thrust", "peak_thrust_cmd", "peak_torque",
                  "time_saturated_orbit", "time_saturated_torque", "sat_entries",
                  "sat_first_entry", "sat_last_exit", "t_failure", "thrust_excess_saturated",
-                 "V2o_part_max", "V2a_part_max", "min_height")
+                 "V2o_part_max", "V2a_part_max", "min_height", "peak_thrust_stages",
+                 "peak_thrust_cmd_stages")
 ZETA = 0.9  # damping of the desired-attitude command filter (lgw.sim.lunar.closed_loop.ZETA)
 TINY = 1e-150  # ||z2|| floor of the adaptive term (lgw.sim.lunar.laws.TINY)
 
@@ -144,6 +161,8 @@ def sys_init(i, C, Q, y, S):  # noqa: N803
         y[j] = X0[i, j]
     S[PKT] = 0.0  # noqa: F821
     S[PKTC] = 0.0  # noqa: F821
+    S[PKTS] = 0.0  # noqa: F821
+    S[PKTCS] = 0.0  # noqa: F821
     S[PKM] = 0.0  # noqa: F821
     S[TSO] = 0.0  # noqa: F821
     S[TSA] = 0.0  # noqa: F821
@@ -229,6 +248,11 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     c2 = s2 + un2
     cn = math.sqrt(c0 * c0 + c1 * c1 + c2 * c2)
     T = fac * cn
+    # a blown-up command (BLOWUP_ACCEL): the step that asked for it is never accepted (sys_step
+    # ends the case at its start), so the stage gets a finite stand-in, no thrust
+    blown = not (T <= BLOW_ACC * X0[i, 6]) or not (m > 0.0)  # noqa: F821
+    if blown:
+        T = 0.0
     q0 = y[12]
     q1 = y[13]
     q2 = y[14]
@@ -401,6 +425,14 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     # sampled signals
     X[14] = T
     X[15] = mag
+    if kr <= 1:  # the t = 0 call or the first stage of a step attempt
+        X[XPKT] = 0.0  # noqa: F821
+        X[XPKTC] = 0.0  # noqa: F821
+        X[XBLOWN] = 0.0  # noqa: F821
+    if blown:
+        X[XBLOWN] = 1.0  # noqa: F821
+    X[XPKT] = max(X[XPKT], T)  # noqa: F821
+    X[XPKTC] = max(X[XPKTC], mag)  # noqa: F821
     X[22] = 1.0 if mag >= Tmax else 0.0
     X[23] = 1.0 if tsat else 0.0
     X[42] = r - R_MOON  # noqa: F821
@@ -422,6 +454,8 @@ def _node_metrics(t, XL, X, S, C, Q, frac, h):  # noqa: N803
      qtol) = Q
     S[PKT] = max(S[PKT], XL[14])  # noqa: F821
     S[PKTC] = max(S[PKTC], XL[15])  # noqa: F821
+    S[PKTS] = max(S[PKTS], XL[14], X[XPKT])  # noqa: F821  (every rhs call of the step)
+    S[PKTCS] = max(S[PKTCS], XL[15], X[XPKTC])  # noqa: F821
     for a in range(3):
         S[PKM] = max(S[PKM], abs(XL[16 + a]))  # noqa: F821
     if XL[22] != 0.0:
@@ -464,6 +498,8 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
         code = DRY  # noqa: F821
     elif X[43] > qtol:
         code = QUAT  # noqa: F821
+    elif X[XBLOWN] != 0.0:  # noqa: F821
+        code = BLOWN  # noqa: F821  (the command at t = 0 cannot be flown)
     if code != COMPLETED:  # noqa: F821
         S[OUT] = code  # noqa: F821
         S[TOUT] = 0.0  # noqa: F821
@@ -476,6 +512,15 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
     node), and the step's metrics."""
     (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, Ta, tc, damp, wn, pointc, J, m_dry,
      qtol) = Q
+    if X[XBLOWN] != 0.0:  # noqa: F821
+        # a blown-up command at a stage of this step: the step is not accepted and the case
+        # ends at its start (theta = 0 on the interpolant between y and itself returns y)
+        S[OUT] = BLOWN  # noqa: F821
+        S[TOUT] = t  # noqa: F821
+        for j in range(NY):  # noqa: F821
+            yn[j] = y[j]
+            k1n[j] = k1[j]
+        return STOP_INSIDE, 0.0  # noqa: F821
     th = 2.0
     code = COMPLETED  # noqa: F821
     if yn[0] < R_MOON:  # noqa: F821
@@ -511,7 +556,7 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
 
 def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     (outc, tout, pkt, pktc, pkm, tso, tsa, nent, tent, texit, tfail, texc, v2o, v2a,
-     hmin) = R
+     hmin, pkts, pktcs) = R
     outc[i] = int(S[OUT])  # noqa: F821
     tout[i] = S[TOUT] if S[OUT] != COMPLETED else t  # noqa: F821
     pkt[i] = S[PKT]  # noqa: F821
@@ -527,15 +572,19 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     v2o[i] = S[V2OMAX]  # noqa: F821
     v2a[i] = S[V2AMAX]  # noqa: F821
     hmin[i] = S[HMIN]  # noqa: F821
+    pkts[i] = S[PKTS]  # noqa: F821
+    pktcs[i] = S[PKTCS]  # noqa: F821
 
 
 HOOKS = (sys_init, sys_rhs, _node_metrics, sys_start, sys_step, sys_finish)
 SLOTS = {"PKT": PKT, "PKTC": PKTC, "PKM": PKM, "TSO": TSO, "TSA": TSA, "NENT": NENT,
          "TENT": TENT, "TEXIT": TEXIT, "TFAIL": TFAIL, "TEXC": TEXC, "V2OMAX": V2OMAX,
-         "V2AMAX": V2AMAX, "HMIN": HMIN, "OUT": OUT, "TOUT": TOUT, "COMPLETED": COMPLETED,
+         "V2AMAX": V2AMAX, "HMIN": HMIN, "OUT": OUT, "TOUT": TOUT, "PKTS": PKTS,
+         "PKTCS": PKTCS, "XPKT": XPKT, "XPKTC": XPKTC, "XBLOWN": XBLOWN, "BLOWN": BLOWN,
+         "COMPLETED": COMPLETED,
          "SURFACE": SURFACE, "DRY": DRY, "QUAT": QUAT, "NONFINITE": NONFINITE}
-CONSTS = {"R_MOON": P.R_MOON, "MU_MOON": P.MU_MOON, "T_NOMINAL": P.T_NOMINAL, "ISP": P.ISP,
-          "G0": P.G0, "ZETA": ZETA, "TINY": TINY}
+CONSTS = {"BLOW_ACC": BLOWUP_ACCEL, "R_MOON": P.R_MOON, "MU_MOON": P.MU_MOON,
+          "T_NOMINAL": P.T_NOMINAL, "ISP": P.ISP, "G0": P.G0, "ZETA": ZETA, "TINY": TINY}
 
 
 def hooks_source() -> str:
@@ -551,20 +600,28 @@ def hooks_source() -> str:
                       *jit])
 
 
-def _key_sources() -> list[str]:
-    import lgw
+def _deps() -> list[str]:
+    """The sources of the modules the generated kernel imports compiled code and constants
+    from (numba does not check them), as first read in this process (lgw.sim.kernel_cache)."""
     from lgw.sim import codegen, integrate, kernel_cache
     from lgw.sim.lunar import kernel
-    from lgw.theory.lunar import law, parameters
-    return [lgw.__version__, *kernel_cache.source_of(codegen, integrate, kernel_cache, kernel,
-                                                     law, parameters)]
+    return kernel_cache.imported_sources(codegen, integrate, kernel)
+
+
+def kernel_text() -> str:
+    """The full text of the generated kernel module (what the cache keys)."""
+    from lgw.sim import integrate
+    return integrate.kernel_module_source(law_header(), hooks_source(),
+                                          {"NY": NY, "NX": NX, "NS": NS})
 
 
 @functools.cache
 def kernel_module():
     """The generated kernel module of seed 001's closed loop (``kernel_parallel``,
-    ``kernel_serial``, ``case_fn`` and the generated law), from the disk cache."""
-    from lgw.sim import integrate, kernel_cache
-    stem = f"lunar_kernel_{kernel_cache.key(_key_sources())}"
-    return kernel_cache.load_module(stem, lambda: integrate.kernel_module_source(
-        law_header(), hooks_source(), {"NY": NY, "NX": NX, "NS": NS}))
+    ``kernel_serial``, ``case_fn`` and the generated law), from the disk cache, keyed by its
+    text (``lgw.sim.kernel_cache.module_for``)."""
+    from lgw.sim import kernel_cache
+    return kernel_cache.module_for("lunar_kernel", kernel_text(), _deps())
+
+
+_deps()  # read the sources the kernel imports now, at this module's import (see _deps)

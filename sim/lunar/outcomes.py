@@ -15,7 +15,12 @@ above the surface at t_f), so a case that reaches t_end is "completed":
                            detected;
   "nonfinite"              the state became NaN / inf (or was at t = 0); time: the start of the
                            step that blew up;
-  "step_limit"             dopri5 ran out of attempts; time: where it stopped.
+  "step_limit"             dopri5 ran out of attempts; time: where it stopped;
+  "command_blown_up"       a stage evaluation asked for a delivered thrust above
+                           ``lgw.sim.lunar.kernel.BLOWUP_ACCEL`` m0 (or for thrust at a mass
+                           <= 0): the step is far too large for the dynamics, it is not
+                           accepted and the case ends at its start; time: that start (as seed
+                           000's outcome of that name, ``lgw.sim.results``).
 """
 
 from __future__ import annotations
@@ -23,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 OUTCOMES = ("completed", "surface_contact", "propellant_exhausted", "quaternion_drift",
-            "nonfinite", "step_limit")
+            "nonfinite", "step_limit", "command_blown_up")
 DOMAIN_EXITS = OUTCOMES[1:4]
 
 

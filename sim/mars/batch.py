@@ -29,8 +29,22 @@ What is recorded per case (``BatchResult``):
     set's beta, q), from the signed linear interpolant of s between nodes (so a zero crossing
     inside a step counts); t_s1_last_exit, t_s2_last_exit: the last time s left that band
     (NaN if it never left after entering).  These are tracked until t_max when stop="t_max";
-  peak_thrust / peak_thrust_unsat: max |F_i| over the nodes and every stage evaluation of
-    the accepted steps until landing, after / before the thrust limit;
+  peak_thrust / peak_thrust_unsat: max |F_i| (N per axis) over the nodes (t = 0 and each
+    accepted step's left node) until the outcome, after / before the thrust limit: the
+    commands of states on the trajectory (the tuner's certificate,
+    lgw.tuning.mars.design.limit_measure, is defined on them);
+  peak_thrust_stages / peak_thrust_unsat_stages: the same maxima over every right-hand-side
+    evaluation of those steps too (RK4's three trial states and the new node; dopri5's five
+    and the new node; rejected dopri5 attempts excluded), so >= the node peaks: what the
+    integrator asked of the engine.  They differ where the command is not smooth between
+    nodes: near an s1 = 0 crossing the corrected law's |s1|^(q1-1) v spikes at a trial state
+    (up to 85 kN at RK4 trial states for a gain set whose node peaks stay under 50 kN);
+  peak_thrust_after_arrival: per axis, max |F_i| after the limit (N) over the accepted nodes
+    from the first one where the axis is in its landing band (|r_i| <= tol_r and
+    |v_i| <= tol_v, the land_tol of the landing criterion) on, until the case ends (with
+    stop="t_max" also after landing); NaN if the axis never enters its band at a node.  A
+    node whose command is blown up is not counted (the case ends there: at t = 0 a case
+    that has landed there with such a command).  The spikes after arrival of issue 17;
     time_saturated: node-sampled time (left-endpoint rule) with the command
     limited on some axis, until landing; min_altitude and ground_contact (r_z < 0 before
     landing: the paper's Fig. 8 "collision"), from the minimum of the cubic Hermite interpolant
@@ -113,7 +127,12 @@ DRAG_CODE = {"none": 0, "physical": 1, "printed": 2}
 ARRAY_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thrust",
                 "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact", "t_s1",
                 "t_s2", "t_s1_last_exit", "t_s2_last_exit", "nonfinite", "fuel_exhausted",
-                "t_end", "y_end", "steps", "step_limit", "blown_up")
+                "t_end", "y_end", "steps", "step_limit", "blown_up", "peak_thrust_stages",
+                "peak_thrust_unsat_stages", "peak_thrust_after_arrival")
+# the per-axis (N, 3) arrays among them
+VECTOR_FIELDS = ("r_land", "v_land", "peak_thrust", "peak_thrust_unsat", "t_s1", "t_s2",
+                 "t_s1_last_exit", "t_s2_last_exit", "peak_thrust_stages",
+                 "peak_thrust_unsat_stages", "peak_thrust_after_arrival")
 assert set(ARRAY_FIELDS) == set(mars_kernel.RESULT_FIELDS) | set(integrate.GENERIC_FIELDS)
 
 # Seed 000's integration defaults (values and their reasons in lgw.sim.mars.parameters).
@@ -166,6 +185,9 @@ class BatchResult:
     steps: np.ndarray
     step_limit: np.ndarray
     blown_up: np.ndarray
+    peak_thrust_stages: np.ndarray
+    peak_thrust_unsat_stages: np.ndarray
+    peak_thrust_after_arrival: np.ndarray
     eps: float
     dt: float
     r0: np.ndarray | None = None
@@ -396,8 +418,7 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
          float(stopping.m_dry),
          BLOWUP_ACCEL if stopping.blowup_accel is None else float(stopping.blowup_accel))
 
-    out = {k: np.empty((n, 3)) for k in ("r_land", "v_land", "peak_thrust", "peak_thrust_unsat",
-                                         "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit")}
+    out = {k: np.empty((n, 3)) for k in VECTOR_FIELDS}
     out.update({k: np.empty(n) for k in ("landing_time", "fuel", "time_saturated",
                                          "min_altitude")})
     out.update({k: np.zeros(n, bool) for k in ("landed", "ground_contact", "fuel_exhausted")})

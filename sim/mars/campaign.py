@@ -200,7 +200,19 @@ def summarize(res: BatchResult) -> dict[str, Any]:
                                     else np.array([])),
         "landing_time_s": _stats(res.landing_time[ok]),
         "fuel_kg": _stats(res.fuel[ok]),
+        # node peaks (the tuner's measure) and stage peaks (every rhs evaluation of the
+        # accepted steps, >= the node peaks; lgw.sim.mars.batch), over landed cases
         "peak_thrust_N": {ax: _stats(res.peak_thrust[ok, i]) for i, ax in enumerate("xyz")},
+        "peak_thrust_stages_N": {ax: _stats(res.peak_thrust_stages[ok, i])
+                                 for i, ax in enumerate("xyz")},
+        "peak_thrust_unsat_stages_N": {ax: _stats(res.peak_thrust_unsat_stages[ok, i])
+                                       for i, ax in enumerate("xyz")},
+        # per axis, max |F_i| from its first node in the landing band on, over every case
+        # whose axis got there ("arrived": how many did)
+        "peak_thrust_after_arrival_N": {
+            ax: {**_stats(res.peak_thrust_after_arrival[:, i]),
+                 "arrived": int(np.sum(np.isfinite(res.peak_thrust_after_arrival[:, i])))}
+            for i, ax in enumerate("xyz")},
         "time_saturated_s": _stats(res.time_saturated[ok]),
         # over all cases, up to landing (negative: below ground, see ground_contact)
         "min_altitude_m": _stats(res.min_altitude),
@@ -231,6 +243,9 @@ def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]
             "r_land": [_num(x) for x in res.r_land[i]], "v_land": [_num(x) for x in res.v_land[i]],
             "fuel": _num(res.fuel[i]), "peak_thrust": [_num(x) for x in res.peak_thrust[i]],
             "peak_thrust_unsat": [_num(x) for x in res.peak_thrust_unsat[i]],
+            "peak_thrust_stages": [_num(x) for x in res.peak_thrust_stages[i]],
+            "peak_thrust_unsat_stages": [_num(x) for x in res.peak_thrust_unsat_stages[i]],
+            "peak_thrust_after_arrival": [_num(x) for x in res.peak_thrust_after_arrival[i]],
             "time_saturated": _num(res.time_saturated[i]),
             "min_altitude": _num(res.min_altitude[i]),
             "ground_contact": bool(res.ground_contact[i]),

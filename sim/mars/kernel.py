@@ -51,12 +51,17 @@ LANDED = 27
 DRY = 28
 TLAND = 29
 BLOWN = 30  # > 0 once a step had a blown-up command (2: not finite); the case ended there
-NS = 31
+PKS = 31  # 3: peak |F| after the limit over every rhs evaluation of the accepted steps
+PKUS = 34  # 3: before
+PKA = 37  # 3: peak |F_i| after the limit from the first node in axis i's landing band on (NaN
+#           until then; the band: |r_i| <= tol_r and |v_i| <= tol_v)
+NS = 40
 
 RESULT_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thrust",
                  "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact",
                  "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit", "fuel_exhausted",
-                 "blown_up")
+                 "blown_up", "peak_thrust_stages", "peak_thrust_unsat_stages",
+                 "peak_thrust_after_arrival")
 
 
 @numba.njit(error_model="numpy", inline="always", cache=True)
@@ -92,6 +97,9 @@ def sys_init(i, C, Q, y, S):  # noqa: N803
     for ax in range(3):
         S[PK + ax] = 0.0
         S[PKU + ax] = 0.0
+        S[PKS + ax] = 0.0
+        S[PKUS + ax] = 0.0
+        S[PKA + ax] = math.nan
     S[TSAT] = 0.0
     S[ZMIN] = y[2]
     S[GROUND] = 1.0 if y[2] < 0.0 else 0.0
@@ -185,12 +193,23 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     K[kr, 6] = 0.0 if bad_cmd else -fn / c
 
 
+def _arrival(y, X, S, tol_r, tol_v):  # noqa: N803
+    """Peak thrust after arrival at an accepted node (state y, rhs outputs X there): per axis,
+    max |F_i| (after the limit) from the first node with |r_i| <= tol_r, |v_i| <= tol_v on."""
+    for ax in range(3):
+        f = abs(X[ax])
+        if not math.isnan(S[PKA + ax]):
+            S[PKA + ax] = max(S[PKA + ax], f)
+        elif abs(y[ax]) <= tol_r and abs(y[3 + ax]) <= tol_v:
+            S[PKA + ax] = f
+
+
 def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
     """Bands entered at t = 0 and landing at t = 0; True if the case ends there."""
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
      stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh, blown) = R
+     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a) = R
     for ax in range(3):
         S[SOLD + ax] = y[ax]
         S[SOLD + 3 + ax] = X[6 + ax]
@@ -208,6 +227,8 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
     if X[XBLOWN] != 0.0 and not (S[LANDED] != 0.0 and stop_landing):
         S[BLOWN] = X[XBLOWN]  # the command at t = 0 is blown up: nothing can be flown
         return True
+    if X[XBLOWN] == 0.0:  # a blown-up command at t = 0 is never flown (landed there)
+        _arrival_fn(y, X, S, tol_r, tol_v)  # noqa: F821
     return S[LANDED] != 0.0 and stop_landing
 
 
@@ -217,7 +238,7 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
      stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh, blown) = R
+     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a) = R
     if X[XBLOWN] != 0.0:
         # a blown-up command at a stage of this step (or at its new node): the step is not
         # accepted and the case ends at its start (y, finite, every quantity physical), as
@@ -253,13 +274,15 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
         # metrics until the outcome (landing or dry mass): command at the step's left node
         sat = False
         for ax in range(3):
-            # peaks at the left node (states on the trajectory); every stage evaluation is
-            # still checked for a blown-up command (X[XBLOWN]).  Stage maxima (X[XPK],
-            # X[XPKU]) are kept per attempt but not reported: at RK4's trial states near an
-            # s1 = 0 crossing the corrected law's singular term spikes, and the tuner's
-            # certificate (lgw.tuning.mars.design.limit_measure) is defined on the nodes
+            # node peaks at the left node (states on the trajectory: the tuner's certificate,
+            # lgw.tuning.mars.design.limit_measure, is defined on them); stage peaks also
+            # over every rhs evaluation of this step (X[XPK], X[XPKU]: its trial states and
+            # its new node), where near an s1 = 0 crossing the corrected law's singular term
+            # spikes at RK4's trial states (issue 14)
             S[PK + ax] = max(S[PK + ax], abs(XL[ax]))
             S[PKU + ax] = max(S[PKU + ax], abs(XL[3 + ax]))
+            S[PKS + ax] = max(S[PKS + ax], abs(XL[ax]), X[XPK + ax])
+            S[PKUS + ax] = max(S[PKUS + ax], abs(XL[3 + ax]), X[XPKU + ax])
             if XL[ax] != XL[3 + ax]:
                 sat = True
         rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
@@ -317,7 +340,9 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
             # landed inside the step, and the node beyond is below the dry mass: end at the
             # landing itself (the end state is the landed vehicle, never below m_dry)
             return STOP_INSIDE, frac  # noqa: F821
+        _arrival_fn(yn, X, S, tol_r, tol_v)  # noqa: F821  (the node is accepted)
         return STOP_AT_NODE, thd  # noqa: F821
+    _arrival_fn(yn, X, S, tol_r, tol_v)  # noqa: F821  (the node is accepted)
     return CONTINUE, thd  # noqa: F821
 
 
@@ -326,7 +351,7 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
      stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh, blown) = R
+     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a) = R
     has_landed = S[LANDED] != 0.0
     dry = S[DRY] != 0.0
     landed[i] = has_landed
@@ -344,6 +369,9 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     for ax in range(3):
         peak[i, ax] = S[PK + ax]
         peak_u[i, ax] = S[PKU + ax]
+        peak_s[i, ax] = S[PKS + ax]
+        peak_us[i, ax] = S[PKUS + ax]
+        peak_a[i, ax] = S[PKA + ax]
         ts1[i, ax] = S[TF + ax]
         ts2[i, ax] = S[TF + 3 + ax]
         ts1x[i, ax] = S[TX + ax]
@@ -353,10 +381,10 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     ground[i] = S[GROUND] != 0.0
 
 
-HOOKS = (sys_init, sys_rhs, sys_start, sys_step, sys_finish)
+HOOKS = (sys_init, sys_rhs, _arrival, sys_start, sys_step, sys_finish)
 SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "ZMIN": ZMIN,
          "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND, "BLOWN": BLOWN,
-         "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN}
+         "PKS": PKS, "PKUS": PKUS, "PKA": PKA, "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN}
 
 
 def hooks_source() -> str:
@@ -365,44 +393,51 @@ def hooks_source() -> str:
     return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
                       "from lgw.sim.mars.kernel import _drag, _drag_fac", "", slots, "",
                       *(inspect.getsource(f) + "\n" for f in HOOKS),
+                      "_arrival_fn = numba.njit(_arrival, error_model='numpy')",
                       *(f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', "
-                        "inline='always')" for f in HOOKS)])
+                        "inline='always')" for f in HOOKS if f is not _arrival)])
 
 
 # --- assembly -------------------------------------------------------------------------------
 
-def _key_sources() -> list[str]:
-    """The code the machine code depends on beyond the law (see lgw.sim.kernel_cache)."""
-    import lgw
-    from lgw.sim import codegen, integrate, kernel_cache
-    from lgw.sim.mars import kernel, laws, parameters
-    return [lgw.__version__, *kernel_cache.source_of(codegen, integrate, kernel_cache, kernel,
-                                                     laws, parameters)]
+def _deps() -> list[str]:
+    """The sources of the modules a generated kernel imports compiled code and constants from
+    (numba does not check them), as first read in this process (lgw.sim.kernel_cache)."""
+    from lgw.sim import integrate, kernel_cache
+    from lgw.sim.mars import kernel, parameters
+    return kernel_cache.imported_sources(integrate, kernel, parameters)
 
 
-def _stem(kind: str, name: str, parts: list[str]) -> str:
-    from lgw.sim import kernel_cache
+def _prefix(kind: str, name: str) -> str:
     slug = "".join(c if c.isalnum() else "_" for c in name)
-    return f"mars_{kind}_{slug}_{kernel_cache.key(parts)}"
+    return f"mars_{kind}_{slug}"
+
+
+def kernel_text(spec) -> str:
+    """The full text of the generated kernel module of law ``spec`` (what the cache keys)."""
+    from lgw.sim import integrate
+    from lgw.sim.mars.laws import law_source
+    return integrate.kernel_module_source(law_source(spec, True), hooks_source(),
+                                          {"NY": NY, "NX": NX, "NS": NS})
+
+
+def law_text(spec) -> str:
+    """The full text of the generated module of law ``spec`` alone (no s2)."""
+    from lgw.sim.mars.laws import law_source
+    return "\n".join(["# generated by lgw.sim.mars.kernel: do not edit (a cache entry)",
+                      "import math", "import numba", "", law_source(spec, False)])
 
 
 @functools.cache
 def _kernel_module(spec):
-    from lgw.sim import integrate, kernel_cache
-    from lgw.sim.mars.laws import law_key_parts, law_source
-    stem = _stem("kernel", spec.name, law_key_parts(spec, True) + _key_sources())
-    return kernel_cache.load_module(stem, lambda: integrate.kernel_module_source(
-        law_source(spec, True), hooks_source(), {"NY": NY, "NX": NX, "NS": NS}))
+    from lgw.sim import kernel_cache
+    return kernel_cache.module_for(_prefix("kernel", spec.name), kernel_text(spec), _deps())
 
 
 @functools.cache
 def _law_module(spec):
     from lgw.sim import kernel_cache
-    from lgw.sim.mars.laws import law_key_parts, law_source
-    stem = _stem("law", spec.name, law_key_parts(spec, False) + _key_sources())
-    return kernel_cache.load_module(stem, lambda: "\n".join(
-        ["# generated by lgw.sim.mars.kernel: do not edit (a cache entry)", "import math",
-         "import numba", "", law_source(spec, False)]))
+    return kernel_cache.module_for(_prefix("law", spec.name), law_text(spec), _deps())
 
 
 def kernel_module(name: str):
@@ -416,3 +451,6 @@ def law_module(name: str):
     """The generated module of law ``name`` alone (``law`` without s2), for tests and tools."""
     from lgw.sim.mars.laws import get_law
     return _law_module(get_law(name))
+
+
+_deps()  # read the sources the kernels import now, at this module's import (see _deps)

@@ -114,14 +114,31 @@ class _NonFinite(Exception):  # noqa: N818  (control flow, not an error)
         self.y = y
 
 
+def after_arrival(r: np.ndarray, v: np.ndarray, f: np.ndarray,
+                  tol: tuple[float, float]) -> np.ndarray:
+    """Per axis (3,), max |F_i| (N) over the samples from the first one with |r_i| <= tol[0]
+    and |v_i| <= tol[1] on; NaN if there is none.  r, v, f: (K, 3) samples in time order."""
+    band = (np.abs(r) <= tol[0]) & (np.abs(v) <= tol[1])
+    out = np.full(3, np.nan)
+    for ax in range(3):
+        hit = np.flatnonzero(band[:, ax])
+        if hit.size:
+            out[ax] = float(np.max(np.abs(f[hit[0]:, ax])))
+    return out
+
+
 def _start_row(rhs: ClosedLoopRHS, y0: np.ndarray, eps: float, landed0: bool, *,
                t: float = 0.0, y: np.ndarray | None = None, nonfinite: bool = False,
-               blown: bool = False) -> dict:
+               blown: bool = False, land_tol: tuple[float, float] = LAND_TOL) -> dict:
     """A case that ends without a solution: landed or blown up at t = 0, or a derivative
     that became non-finite at (t, y) (solve_ivp cannot return a partial solution; see
     ``simulate_reference``): the state there and the t = 0 band entries.  Peaks: the
-    as simulate_batch's, 0 (no step was flown)."""
+    as simulate_batch's, 0 (no step was flown); after arrival: the t = 0 command on the axes
+    in their band unless it is blown up (as simulate_batch, NaN otherwise)."""
     y = y0 if y is None else y
+    after = np.full(3, np.nan)
+    if not (blown or rhs.blown(y0)):  # as simulate_batch: a blown-up command is never flown
+        after = after_arrival(y0[None, :3], y0[None, 3:6], rhs.force(y0[None, :])[0], land_tol)
     s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
     tf = np.where(np.abs(s0) <= eps, 0.0, np.nan)
     nan3 = np.full(3, np.nan)
@@ -133,7 +150,9 @@ def _start_row(rhs: ClosedLoopRHS, y0: np.ndarray, eps: float, landed0: bool, *,
             "ground_contact": bool(y0[2] < 0), "t_s1": tf[:3], "t_s2": tf[3:],
             "t_s1_last_exit": nan3, "t_s2_last_exit": nan3, "nonfinite": nonfinite,
             "t_end": float(t), "y_end": y, "steps": 0, "step_limit": False,
-            "blown_up": blown, "sol": None}
+            "blown_up": blown, "peak_thrust_stages": np.zeros(3),
+            "peak_thrust_unsat_stages": np.zeros(3), "peak_thrust_after_arrival": after,
+            "sol": None}
 
 
 def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
@@ -176,16 +195,18 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
               + [dry, blown])
     landed0 = bool(landing(0.0, y0) <= 0)
     if landed0 and stop == "landing":  # as simulate_batch: landed at t = 0, nothing to fly
-        return _start_row(rhs, y0, eps, True)
+        return _start_row(rhs, y0, eps, True, land_tol=land_tol)
     if rhs.blown(y0):  # the command at t = 0 cannot be flown (nonfinite too if it is not finite)
         return _start_row(rhs, y0, eps, landed0, blown=True,
-                          nonfinite=not np.all(np.isfinite(rhs.force(y0)[0])))
+                          nonfinite=not np.all(np.isfinite(rhs.force(y0)[0])),
+                          land_tol=land_tol)
     try:
         with np.errstate(divide="ignore", invalid="ignore"):
             sol = solve_ivp(f, (0.0, t_max), y0, method=method, rtol=rtol, atol=atol,
                             max_step=max_step, events=events, dense_output=True)
     except _NonFinite as e:
-        return _start_row(rhs, y0, eps, landed0, t=e.t, y=e.y, nonfinite=True)
+        return _start_row(rhs, y0, eps, landed0, t=e.t, y=e.y, nonfinite=True,
+                          land_tol=land_tol)
     s0 = np.concatenate([y0[:3], rhs.s2_of(y0)])
     t_dry = sol.t_events[13][0] if len(sol.t_events[13]) else np.inf
     t_blow = sol.t_events[14][0] if len(sol.t_events[14]) else np.inf
@@ -217,6 +238,13 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
     if exhausted and stop == "landing" and np.isnan(tl):
         y_end[6] = m_dry  # the case ended at the located crossing: exactly m_dry (as batch)
     ground = bool(np.any(ys[2] < 0))
+    # after arrival: on the solver's nodes and the metric grid until the case ends (after
+    # landing too with stop="t_max"), before a blown-up command
+    t_last = min(t_end, t_blow)
+    grid_a = np.union1d(np.arange(0.0, t_last, METRIC_GRID),
+                        sol.t[sol.t < t_last] if blown_up else sol.t[sol.t <= t_last])
+    ya = sol.sol(grid_a)
+    after = after_arrival(ya[:3].T, ya[3:6].T, rhs.force(ya.T)[0], land_tol)
     return {"landed": bool(np.isfinite(tl)), "landing_time": tl, "r_land": y_land[:3],
             "v_land": y_land[3:6],
             # out of propellant: all of it, m0 - m_dry (the root finder's m there is m_dry
@@ -231,7 +259,12 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
             "ground_contact": ground, "t_s1": tf[:3], "t_s2": tf[3:], "t_s1_last_exit": tx[:3],
             "t_s2_last_exit": tx[3:], "nonfinite": bool(nonfinite), "t_end": t_end,
             "y_end": y_end, "steps": len(sol.t) - 1, "step_limit": False,
-            "blown_up": blown_up, "sol": sol}
+            "blown_up": blown_up,
+            # one kind of peak here: on the dense solution's metric grid (the solver's own
+            # evaluations are not states of the solution)
+            "peak_thrust_stages": np.max(np.abs(f_sat), axis=0),
+            "peak_thrust_unsat_stages": np.max(np.abs(f_uns), axis=0),
+            "peak_thrust_after_arrival": after, "sol": sol}
 
 
 def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,

@@ -79,6 +79,9 @@ def _check(ctx, X0, res):
     m0 = X0[6, fin]
     assert np.all(m > 0) and np.all(m <= m0)
     assert np.all(m >= ctx.opts.m_dry * (1 - 1e-12))
+    # stage peaks include the node peaks (every rhs call of the accepted steps)
+    assert np.all(c["peak_thrust_stages"][fin] >= c["peak_thrust"][fin])
+    assert np.all(c["peak_thrust_cmd_stages"][fin] >= c["peak_thrust_cmd"][fin])
     exc = c["thrust_excess_saturated"]
     assert np.all(~(exc > 1e-9 * P.T_MAX)), exc  # NaN (no saturated node) or <= 0
     for i in range(n):
@@ -124,3 +127,33 @@ def test_rk4_and_dopri5_agree_on_the_outcome_class(case):
     ca = [outcome_class(k) for k in a.cases["outcome"]]
     cb = [outcome_class(k) if k != lim else "completed" for k in b.cases["outcome"]]
     assert ca == cb, (ca, cb, a.flagged, b.flagged)
+
+
+def _campaign():
+    import importlib.util
+    from pathlib import Path
+    path = Path(__file__).resolve().parents[2] / "benchmarks" / "adversarial_lunar.py"
+    spec = importlib.util.spec_from_file_location("adversarial_lunar", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_a_blown_up_stage_command_ends_the_case_not_an_event():
+    """Found by benchmarks/adversarial_lunar.py (seed 0, case 360): the "nominal" reading of
+    (24) does not limit the thrust, a stage of the first RK4 step asked for 6e35 N and the
+    step's interpolant put "propellant exhausted" at 0.05 s with a mass of -3.5e14 kg.  Now
+    the case ends at the start of that step, "command_blown_up", with its state there."""
+    camp = _campaign()
+    ctx, X0 = camp.adversarial_cases(1000, 0, 5.0)
+    sub_ctx, sub_X0 = camp._subset(ctx, X0, np.array([360]))
+    for method in ("rk4", "dopri5"):
+        with np.errstate(all="ignore"):
+            res = simulate(sub_ctx, sub_X0, method=method, record=False, max_steps=5_000)
+        c = res.cases
+        assert OUTCOMES[c["outcome"][0]] == "command_blown_up", method
+        assert c["t_outcome"][0] < 0.05 and np.all(np.isfinite(c["y_end"][0]))
+        assert ctx.opts.m_dry <= c["y_end"][0, 6] <= sub_X0[6, 0]
+        assert c["peak_thrust_stages"][0] >= c["peak_thrust"][0]
+    a = camp.audit(sub_ctx, sub_X0, res.cases, "dopri5")
+    assert not (a["unexplained"] | a["impossible"] | a["nonfinite_out"]).any()

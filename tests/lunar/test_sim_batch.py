@@ -154,3 +154,34 @@ def test_section5_scenario_claims_have_computed_verdicts():
     assert all(c.scope == "scenario" for c in claims)
     # T_max T_a = 23.8 kN < T_d = 24 kN: exact, whatever the simulation
     assert claims[0].steps[0].status == "refuted"
+
+
+def test_stage_peaks_equal_the_numpy_trial_states():
+    """peak_thrust_stages / peak_thrust_cmd_stages: the max over every rhs evaluation of the
+    accepted steps (RK4's trial states and the new node), >= the node peaks.  Independent
+    route: from the kernel's recorded nodes, the RK4 trial states computed with the numpy
+    field (``closed_loop.field``) and its thrust outputs there.  Unsaturated (T_max = 1e9 N:
+    saturated, the thrust is T_max at every node and stage alike), the thrust grows to the
+    end, so the stages (the last step's reach t_end) ask for more than any left node."""
+    ctx, X0 = section5_case(opts=RunOptions(t_end=3.0, thrust_max=1e9))
+    res = rk4_batch(ctx, X0, record_every=1)
+    c = res.cases
+    assert c["peak_thrust_stages"][0] > 1.01 * c["peak_thrust"][0]
+    assert c["peak_thrust_cmd_stages"][0] > 1.01 * c["peak_thrust_cmd"][0]
+    h = res.dt
+    pk, pkc = 0.0, 0.0
+    for k in range(len(res.t) - 1):
+        t, X = res.t[k], res.X[k]
+        k1 = field(t, X, ctx)
+        x2 = X + h / 2 * k1
+        k2 = field(t + h / 2, x2, ctx)
+        x3 = X + h / 2 * k2
+        k3 = field(t + h / 2, x3, ctx)
+        x4 = X + h * k3
+        for tt, xx in ((t, X), (t + h / 2, x2), (t + h / 2, x3), (t + h, x4),
+                       (res.t[k + 1], res.X[k + 1])):
+            out = field(tt, xx, ctx, outputs=True)[1]
+            pk = max(pk, float(out["thrust"][0]))
+            pkc = max(pkc, float(out["thrust_cmd"][0]))
+    assert c["peak_thrust_stages"][0] == pytest.approx(pk, rel=1e-9)
+    assert c["peak_thrust_cmd_stages"][0] == pytest.approx(pkc, rel=1e-9)

@@ -58,8 +58,14 @@ def _check_case_quantities(res) -> np.ndarray:
     load = res.m0 - M_DRY
     assert np.all((res.fuel >= -1e-9 * res.m0) & (res.fuel <= load)), res.fuel
     blow = BLOWUP_ACCEL * res.m0[:, None]
-    for pk in (res.peak_thrust, res.peak_thrust_unsat):
+    for pk in (res.peak_thrust, res.peak_thrust_unsat, res.peak_thrust_stages,
+               res.peak_thrust_unsat_stages):
         assert np.all((pk >= 0) & (pk <= blow)), pk
+    # the stage peaks include the nodes; after arrival: a thrust, or null if never arrived
+    assert np.all(res.peak_thrust_stages >= res.peak_thrust)
+    assert np.all(res.peak_thrust_unsat_stages >= res.peak_thrust_unsat)
+    after = res.peak_thrust_after_arrival
+    assert np.all(np.isnan(after) | ((after >= 0) & (after <= blow))), after
     # every number a case reports is finite, whatever its outcome ...
     for x in (res.fuel, res.time_saturated, res.min_altitude, res.t_end, t):
         assert np.all(np.isfinite(x)), x
