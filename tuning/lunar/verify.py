@@ -306,7 +306,8 @@ def _fly_cases(g: LoopGains, x1: np.ndarray, x2: np.ndarray, opts: VerifyOptions
 def reproduction(g: LoopGains, x1_0: float, x2_0, opts: VerifyOptions, claim: str) -> str:
     """A ready-to-paste snippet that flies the witness alone (the general system (5) has no
     ``lgw simulate`` front: ``lgw simulate lunar`` flies the Section 5 closed loop) and prints
-    its margin for the claim."""
+    its margin for the claim, with the bound multiplied by the run's scale factor if any."""
+    f = float(opts.scale.get(claim, 1.0))
     x2 = ", ".join(f"{float(v):.17g}" for v in x2_0)
     gd = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in g.to_dict().items()}
     return ("python - <<'EOF'\n"
@@ -317,7 +318,8 @@ def reproduction(g: LoopGains, x1_0: float, x2_0, opts: VerifyOptions, claim: st
             f"opts = VerifyOptions(t_end={opts.t_end!r}, u_max={opts.u_max!r}, D={opts.D!r})\n"
             f"m, p = _fly_cases(g, np.array([{float(x1_0):.17g}]), np.array([[{x2}]]), opts, "
             f"{opts.dt!r})\n"
-            f"print('margin', m[0][{claim!r}], '(bound, observed)', p[0][{claim!r}])\n"
+            f"b, o = p[0][{claim!r}]\n"
+            f"print('bound x {f!r}', b * {f!r}, 'observed', o, 'margin', 1 - o / (b * {f!r}))\n"
             "EOF")
 
 
