@@ -102,8 +102,10 @@ def test_shrunk_bound_is_violated_with_a_confirmed_witness_exit_1(tmp_path):
     the printed reproduction flies the same reaching time (about 2.5 min on 2 loaded cores)."""
     import subprocess
 
-    code, d = _run("--scale-bound", "reaching-known=0.97")
-    assert code == 1
+    p = subprocess.run(["lgw", "verify", "eros", "--scale-bound", "reaching-known=0.97",
+                        "--json"], capture_output=True, text=True)
+    assert p.returncode == 1, p.stderr
+    d = json.loads(p.stdout)
     c = {c["claim"]: c for c in d["claims"]}
     r = c["reaching-known"]
     assert r["verdict"] == "violated" and r["ratio"] > 1
