@@ -92,7 +92,9 @@ def observed_vs_bound(panels: Sequence[dict[str, Any]], title: str) -> bytes:
 
     Each panel: ``claim``, ``equation``, ``bound`` and ``observed`` (1-D arrays, same length;
     the observed value already minus the check's tolerance, so y <= x is the claim),
-    ``violated`` (bool array), ``excluded`` (int), ``unit`` (axis label unit, e.g. "s")."""
+    ``violated`` (bool array), ``excluded`` (int), ``unit`` (axis label unit, e.g. "s"), and
+    optionally ``ylabel`` (default "observed - tolerance").  Axes are logarithmic when every
+    point is positive and they span more than two decades (else linear)."""
     import numpy as np
 
     n = max(len(panels), 1)
@@ -119,13 +121,22 @@ def observed_vs_bound(panels: Sequence[dict[str, Any]], title: str) -> bytes:
                            label=f"violation ({int(bad.sum())})", zorder=3)
             vals = np.concatenate([b[fin], o[fin]]) if fin.any() else np.array([0.0, 1.0])
             lo, hi = float(np.min(vals)), float(np.max(vals))
-            pad = 0.05 * (hi - lo or 1.0)
-            ax.plot([lo - pad, hi + pad], [lo - pad, hi + pad], label="bound (y = x)",
-                    **BOUND_STYLES[0])
+            log = lo > 0 and hi / lo > 100
+            if log:
+                ends = [lo / 1.3, hi * 1.3]
+                ax.set_xscale("log")
+                ax.set_yscale("log")
+            else:
+                pad = 0.05 * (hi - lo or 1.0)
+                ends = [lo - pad, hi + pad]
+                ax.locator_params(nbins=5)
+            ax.plot(ends, ends, label="bound (y = x)", **BOUND_STYLES[0])
             u = p.get("unit", "")
+            ylab = p.get("ylabel", "observed - tolerance")
             ax.set_xlabel(f"proven bound ({u})" if u else "proven bound")
-            ax.set_ylabel(f"observed - tolerance ({u})" if u else "observed - tolerance")
-            ax.set_title(f"{p['claim']} {p['equation']}\n{int(fin.sum())} points, "
+            ax.set_ylabel(f"{ylab} ({u})" if u else ylab)
+            name = p["claim"] if p["equation"] in p["claim"] else f"{p['claim']} {p['equation']}"
+            ax.set_title(f"{name}\n{int(fin.sum())} points, "
                          f"{int(p.get('excluded', 0))} cases excluded")
             ax.legend(loc="upper left")
         fig.suptitle(title)

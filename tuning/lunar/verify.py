@@ -414,6 +414,9 @@ def result_exit_code(results: list[ClaimResult]) -> int:
 def plot_panels(results: list[ClaimResult]) -> list[dict[str, Any]]:
     """The panels of ``lgw.tuning.figures.observed_vs_bound``: L2 norms (squared for (19))
     against their bounds; for (13) the largest V2 step outside the band over V2(0), bound 0."""
+    def unit(c: str) -> str:
+        return ("V2 step / V2(0)" if c == "V2_step_outside_band" else
+                "squared L2 norm" if c.startswith("(19") else "L2 norm")
+
     return [{"claim": r.claim, "equation": r.equation, "excluded": r.n_excluded,
-             "unit": "relative" if r.claim == "V2_step_outside_band" else "L2 norm", **r.points}
-            for r in results]
+             "unit": unit(r.claim), "ylabel": "observed", **r.points} for r in results]
