@@ -100,11 +100,15 @@ def test_bad_option_is_one_error_line_exit_2(args, capsys):
 
 
 @pytest.mark.parametrize("sub", ["", "sub"])
-def test_bad_plot_path_is_exit_2_before_any_work(tmp_path, capsys, sub):
+def test_bad_plot_path_is_exit_2_before_any_work(tmp_path, capsys, sub, monkeypatch):
     """--plot naming a file, or a folder below a file: one error line, exit 2, nothing
     written (checked before the campaign)."""
     from lgw.tuning.cli import main
 
+    def no_work(*a, **k):
+        raise AssertionError("the campaign ran before --plot was checked")
+
+    monkeypatch.setattr(V, "run_verify", no_work)
     f = tmp_path / "a_file"
     f.write_text("x")
     with pytest.raises(SystemExit) as e:
