@@ -42,8 +42,11 @@ def test_too_few_cases_is_inconclusive_exit_4():
 
 
 def test_shrunk_bound_is_violated_with_a_rechecked_witness_exit_1(tmp_path):
-    code, d = _run("--scale", "(19a)=0.25")
+    db = tmp_path / "db"
+    code, d = _run("--scale", "(19a)=0.25", "--database", str(db))
     assert code == 1
+    # the failure is saved in the example database (replayed first on the next run)
+    assert any(p.is_file() for p in (db / "lunar" / "orbit").rglob("*"))
     c = {c["claim"]: c for c in d["claims"]}
     r = c["(19a)"]
     assert r["verdict"] == "violated" and r["bound_scale"] == 0.25
@@ -117,3 +120,14 @@ def test_bad_plot_path_is_exit_2_before_any_work(tmp_path, capsys, sub, monkeypa
     err = capsys.readouterr().err
     assert err.startswith("error: ") and "--plot" in err and err.count("\n") == 1
     assert [p.name for p in tmp_path.iterdir()] == ["a_file"] and f.read_text() == "x"
+
+
+@pytest.mark.parametrize("system", ["mars", "lunar", "eros"])
+def test_a_database_makes_the_run_random_so_hypothesis_uses_it(system, tmp_path):
+    """Hypothesis ignores the example database in a seeded run (hypothesis.seed sets
+    database=None), so --database must drop the seed, or it would silently do nothing."""
+    import importlib
+
+    VO = importlib.import_module(f"lgw.tuning.{system}.verify").VerifyOptions
+    assert VO(seed=3).seed == 3
+    assert VO(seed=3, database=tmp_path).seed is None

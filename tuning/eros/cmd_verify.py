@@ -50,8 +50,9 @@ def _fmt(x: float, spec: str = ".4g") -> str:
 @click.option("--min-cases", type=Integer(1, 10**7, "cases"), default=MIN_CASES,
               show_default=True, help="checked simulated cases a claim needs for 'holds'")
 @click.option("--database", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Hypothesis example database folder (replays earlier failures first) "
-                   "[default: none]")
+              help="Hypothesis example database folder: replays earlier failures first and "
+                   "saves new ones; makes the run random (Hypothesis uses no database in a "
+                   "seeded run) [default: none]")
 @click.option("--scale-bound", "scale", multiple=True, metavar="CLAIM=FACTOR",
               help="multiply a claim's bound (self-test of the checker: < 1 shrinks it) "
                    "[default: none]")

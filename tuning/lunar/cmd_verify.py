@@ -29,8 +29,9 @@ PROFILE_NAMES = ("ci", "thorough")
 @click.option("--examples", type=Integer(1, 100_000, "examples"), default=None,
               help="Hypothesis examples [default: the profile's]")
 @click.option("--database", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Hypothesis example database folder (replays earlier failures first) "
-                   "[default: none]")
+              help="Hypothesis example database folder: replays earlier failures first and "
+                   "saves new ones; makes the run random (Hypothesis uses no database in a "
+                   "seeded run) [default: none]")
 @click.option("--t-end", type=Number(0, 600, lo_open=True, unit="s"), default=5.0,
               show_default=True, help="flight time per case (s)")
 @click.option("--dt", type=Number(0, 0.1, lo_open=True, unit="s"), default=0.02,

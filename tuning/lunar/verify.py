@@ -230,6 +230,10 @@ class VerifyOptions:
     D: float = 0.5
 
     def __post_init__(self) -> None:
+        if self.database is not None:
+            # Hypothesis uses no example database in a seeded (derandomised) run, so a
+            # database makes the run random: saved failures are replayed first, new ones saved
+            object.__setattr__(self, "seed", None)
         if self.profile not in PROFILES:
             raise ParameterError("profile", self.profile, f"one of {', '.join(PROFILES)}")
         if self.min_cases < 1:

@@ -56,7 +56,9 @@ def _fmt(x: float, spec: str = ".4g") -> str:
 @click.option("--min-cases", type=Integer(1, 10**7, "cases"), default=MIN_CASES,
               show_default=True, help="checked simulated cases a claim needs for 'holds'")
 @click.option("--database", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Hypothesis example database folder (replays earlier failures first)")
+              help="Hypothesis example database folder: replays earlier failures first and "
+                   "saves new ones; makes the run random (Hypothesis uses no database in a "
+                   "seeded run) [default: none]")
 @click.option("--dt", type=Number(0, 1, lo_open=True, unit="s"), default=0.05,
               show_default=True, help="RK4 step (s)")
 @click.option("--eps", type=Number(0, lo_open=True, unit="m or m/s"), default=0.05,

@@ -9,11 +9,14 @@ a report::
         lgw_verify.assert_holds()
 
 The path is relative to the test file.  Options of the marker: system ("mars", "lunar" or
-"eros": lgw.testing.SYSTEMS), profile ("ci" | "thorough"), seed (default 0; None for
+"eros": lgw.testing.SYSTEMS), profile ("ci" | "thorough"), seed (default: see below; None for
 random), min_cases, examples, scale (a dict claim -> factor on its bound: a self-test) and
 database (a
 folder for Hypothesis' example database; default the pytest cache folder
-``.pytest_cache/lgw-examples``, kept between CI runs by caching that folder).  The command-line
+``.pytest_cache/lgw-examples``, kept between CI runs by caching that folder).  A database makes
+the run random (Hypothesis uses none in a seeded run): without ``seed=`` the marker runs random
+examples with the cached database; with ``seed=S`` (and no ``database=``) a derandomised run
+without one.  The command-line
 option ``--lgw-profile`` overrides the marker's profile.
 """
 
@@ -91,7 +94,7 @@ def lgw_verify(request: pytest.FixtureRequest) -> VerifyReport:
     if cli_profile:
         opts["profile"] = cli_profile
     cache = getattr(request.config, "cache", None)  # None under -p no:cacheprovider
-    if "database" not in opts and cache is not None:
+    if "database" not in opts and "seed" not in opts and cache is not None:
         opts["database"] = Path(cache.mkdir("lgw-examples"))
     import importlib
 
