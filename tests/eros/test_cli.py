@@ -68,10 +68,11 @@ def test_tune_meets_target_on_a_fresh_campaign(tmp_path):
 
 
 def test_verify_no_violation_small_campaign():
-    r = lgw("verify", "eros", "--cases", "12", "--json")
+    r = lgw("verify", "eros", "--examples", "2", "--min-cases", "2", "--json")
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
-    assert out["violations"] == 0 and out["worst_margin_s"] >= 0 and out["nonfinite"] == 0
+    for c in out["claims"]:  # (the full checks: tests/eros/test_verify.py)
+        assert c["verdict"] == "holds" and c["ratio"] <= 1 and c["n_excluded"] == 0
 
 
 @pytest.mark.slow

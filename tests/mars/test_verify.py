@@ -142,3 +142,30 @@ def test_verify_rejects_bad_input():
         VerifyOptions(scale={"nope": 1.0})
     with pytest.raises(ParameterError):
         run_verify(default_gains().with_disturbance(None), VerifyOptions(**FAST))
+
+
+def test_plot_observed_against_bound_is_written(default_run, tmp_path):
+    """--plot's figure from the same records: one point per checked (case, axis), written
+    atomically (only the PNG lands in the folder)."""
+    from lgw.tuning.figures import write_verify_plot
+    from lgw.tuning.mars.verify import plot_panels
+
+    panels = plot_panels(default_run)
+    for r, p in zip(default_run, panels, strict=True):
+        assert len(p["bound"]) == len(p["observed"]) == 3 * r.n_checked
+        assert not p["violated"].any()
+    path = write_verify_plot(tmp_path / "fig", "mars", panels, "test")
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and path.stat().st_size > 20_000
+    assert [p.name for p in (tmp_path / "fig").iterdir()] == ["verify_mars.png"]
+
+
+@pytest.mark.parametrize("sub", ["", "sub"])
+def test_bad_plot_path_is_exit_2_before_any_work(tmp_path, sub):
+    from lgw.tuning.cli import main
+
+    f = tmp_path / "a_file"
+    f.write_text("x")
+    with pytest.raises(SystemExit) as e:
+        main(["verify", "mars", "--plot", str(f / sub if sub else f)])
+    assert e.value.code == 2
+    assert [p.name for p in tmp_path.iterdir()] == ["a_file"] and f.read_text() == "x"

@@ -26,6 +26,10 @@ COLUMNS = (("t_reach_max", "reach s"), ("t_track_all", "tracked s"), ("iae", "IA
               help="pdsmc-sign, pdsmc-tanh, ftsmc-sign, ftsmc-tanh, fuzzy-sign, fuzzy-tanh or all")
 @click.option("--cases", type=Integer(0, 10**6, "cases"), default=0, show_default=True,
               help="Monte Carlo cases over the initial-offset envelope (0: the paper's scenario)")
+@click.option("--initial-states", "initial_states", default=None,
+              type=click.Path(dir_okay=False, path_type=Path),
+              help="CSV of initial errors, header ex, ey, ez, vx, vy, vz [, phase] (m, m/s, "
+                   "rad; UTF-8), e.g. a witness of lgw verify eros [default: none]")
 @click.option("--seed", type=SEED, default=1, show_default=True,
               help="random seed (numpy SeedSequence); integer in [0, 2^64 - 1]")
 @click.option("--t-final", type=Number(0, 1e5, lo_open=True, unit="s"), default=15.0,
@@ -46,7 +50,8 @@ COLUMNS = (("t_reach_max", "reach s"), ("t_track_all", "tracked s"), ("iae", "IA
               default=None, help="write figures (PNG) to DIR: the variants' tracking errors "
                                  "per axis, control and chattering (case 0); a campaign: also "
                                  "the reaching and tracked times of every case")
-def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: float, dt: float,
+def command(gains_path: Path | None, law: str, cases: int, initial_states: Path | None,
+            seed: int, t_final: float, dt: float,
             gravity: str, disturbance: str, reference: str, as_json: bool,
             plot_dir: Path | None) -> None:
     """Fly seed 002's closed loop (sampled-data, zero-order hold) and print the Table 2 analogue:
@@ -69,7 +74,13 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
         raise ParameterError("--cases", cases, "must be >= 0")
     base = SimOptions(t_final=t_final, dt=dt, gravity=gravity, disturbance=disturbance,
                       reference=reference)
-    if cases == 0:
+    if initial_states is not None:
+        if cases:
+            raise ParameterError("--cases", cases, "does not apply with --initial-states")
+        from lgw.tuning.eros.options import read_offsets_csv
+
+        e0, ed0, ph = read_offsets_csv(initial_states)
+    elif cases == 0:
         e0, ed0, ph = P.SCENARIO_OFFSET[None], P.SCENARIO_VOFFSET[None], np.zeros(1)
     else:
         e0, ed0, ph = offsets(cases, seed)
@@ -83,7 +94,7 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
         for k, _ in COLUMNS:
             row[k] = float(np.mean(s[k]))
             row[k + "_max"] = float(np.max(s[k]))
-        if cases == 0:
+        if len(e0) == 1:
             row["outcome"] = OUTCOMES[int(s["outcome"][0])]
             row["t_outcome"] = float(s["t_outcome"][0])
             row["t_reach_axes"] = m["t_reach"][0].tolist()
@@ -108,13 +119,14 @@ def command(gains_path: Path | None, law: str, cases: int, seed: int, t_final: f
                                                     "tracked)",
                                             "outcomes": OUTCOME_NOTE}}, indent=2))
         return
-    title = "seed 002 scenario" if cases == 0 else f"seed 002 campaign, {cases} cases (mean/max)"
+    title = ("seed 002 scenario" if cases == 0 and initial_states is None else
+             f"seed 002, {len(e0)} cases (mean/max)")
     t = Table(title=title)
     t.add_column("variant", no_wrap=True)
     for _, label in COLUMNS:
         t.add_column(label, justify="right")
     for r in rows:
-        cells = [f"{r[k]:.4g}" if cases == 0 else f"{r[k]:.4g}/{r[k + '_max']:.4g}"
+        cells = [f"{r[k]:.4g}" if len(e0) == 1 else f"{r[k]:.4g}/{r[k + '_max']:.4g}"
                  for k, _ in COLUMNS]
         t.add_row(r["variant"], *cells)
     Console().print(t)

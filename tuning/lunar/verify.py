@@ -8,10 +8,17 @@ the sign-like term of (7) (claim smooth-7) is excluded from the step-wise V2 che
 
 from __future__ import annotations
 
+import math
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
 import numpy as np
 from lgw.sim.lunar.batch import l2_norm
 from lgw.sim.lunar.closed_loop import gain_arrays
 from lgw.sim.lunar.general import GeneralCase, fly
+from lgw.theory.errors import ParameterError
 from lgw.theory.lunar.bounds import lambda_gain_bounds, transient_bounds, v2_initial, z_l2_bounds
 from lgw.theory.lunar.gains import LoopGains, make_loop
 
@@ -19,7 +26,10 @@ BAND = 3.0  # chattering band: ||z2|| <= BAND dt (d0e + D)
 
 
 def margins(t: np.ndarray, o: dict, g: LoopGains, case: GeneralCase, x1_0: float,
-            dt: float, i: int = 0) -> dict[str, float]:
+            dt: float, i: int = 0, pairs: dict | None = None) -> dict[str, float]:
+    """Relative margins (bound - observed) / bound of case ``i`` (< 0 violates); when ``pairs``
+    is a dict it receives claim -> (bound, observed) for the observed-against-bound plot (the
+    V2 claim: bound 0 on the largest step of V2 outside the band, relative to V2(0))."""
     V2 = o["V2"][:, i]
     band = BAND * dt * (o["d0e"][:-1, i] + case.D)
     outside = o["nz"][:-1, i] > band
@@ -36,9 +46,15 @@ def margins(t: np.ndarray, o: dict, g: LoopGains, case: GeneralCase, x1_0: float
         return (bound - obs) / bound if bound > 0 else (0.0 if obs <= 0 else -np.inf)
 
     n = lambda k: float(l2_norm(t, o[k][..., i:i + 1])[0])  # noqa: E731
+    step = float(np.max(dV[outside], initial=-np.inf) / V2[0]) if V2[0] > 0 else 0.0
+    pair = {"V2_step_outside_band": (0.0, step), "(18a)": (c1 * w, n("l1")),
+            "(18b)": (c2 * w, n("l2")), "(19a)": (b1, n("z1") ** 2),
+            "(19b) derived": (b2, n("z2") ** 2), "(19b) printed": (b2p, n("z2") ** 2),
+            "(21a)": (x1b, n("x1"))}
+    if pairs is not None:
+        pairs.update({k: (float(b), float(v)) for k, (b, v) in pair.items()})
     return {
-        "V2_step_outside_band": float(-np.max(dV[outside], initial=-np.inf) / V2[0])
-        if V2[0] > 0 else 0.0,
+        "V2_step_outside_band": -step,
         "V2_max_rise_inside_band": float(np.max(dV[~outside], initial=0.0) / V2[0])
         if V2[0] > 0 else 0.0,
         "(18a)": rel(c1 * w, n("l1")) if w > 0 else -n("l1"),
@@ -186,3 +202,225 @@ def exit_code(results: list[dict]) -> int:
     """1 if a claim is violated, else 4 if one is inconclusive, else 0."""
     found = {r["result"] for r in results}
     return 1 if "violated" in found else (4 if "inconclusive" in found else 0)
+
+
+# --- lgw verify lunar for one gain set: Hypothesis drives the initial errors ---------------
+
+PROFILES = {"ci": {"examples": 16}, "thorough": {"examples": 120}}
+BATCH = (1, 8)  # states per Hypothesis example (one batched RK4 flight)
+
+
+@dataclass(frozen=True)
+class VerifyOptions:
+    """How ``lgw verify lunar`` runs for one orbit-loop gain set: profile (ci | thorough),
+    seed (None: random, else derandomised), Hypothesis database folder, min checked cases per
+    claim, examples per run (None: the profile's), bound scale factors (claim -> factor, a
+    self-test), flight time t_end (s), RK4 step dt (s), per-axis saturation u_max (N) and the
+    disturbance norm D (m/s^2) of the general system (5)."""
+
+    profile: str = "ci"
+    seed: int | None = 0
+    database: Path | None = None
+    min_cases: int = MIN_CASES
+    examples: int | None = None
+    scale: Mapping[str, float] = field(default_factory=dict)
+    t_end: float = 5.0
+    dt: float = 0.02
+    u_max: float = 2000.0
+    D: float = 0.5
+
+    def __post_init__(self) -> None:
+        if self.database is not None:
+            # Hypothesis uses no example database in a seeded (derandomised) run, so a
+            # database makes the run random: saved failures are replayed first, new ones saved
+            object.__setattr__(self, "seed", None)
+        if self.profile not in PROFILES:
+            raise ParameterError("profile", self.profile, f"one of {', '.join(PROFILES)}")
+        if self.min_cases < 1:
+            raise ParameterError("min-cases", self.min_cases, "must be >= 1")
+        if self.examples is not None and self.examples < 1:
+            raise ParameterError("examples", self.examples, "must be >= 1")
+        for k, v in self.scale.items():
+            if k not in SCALABLE:
+                raise ParameterError("scale", k, f"a claim name: {', '.join(SCALABLE)}")
+            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise ParameterError("scale", v, "a finite factor > 0")
+        if not 0 < self.t_end <= 600:
+            raise ParameterError("t-end", self.t_end, "must lie in (0, 600] s")
+        if not 0 < self.dt <= 0.1:
+            raise ParameterError("dt", self.dt, "must lie in (0, 0.1] s")
+        if not self.u_max > 0:
+            raise ParameterError("u-max", self.u_max, "must be > 0 N")
+
+
+@dataclass
+class ClaimResult:
+    """One claim's outcome for the gain set (the records ``lgw verify lunar`` prints): counts,
+    the worst relative margin (bound - observed)/bound and its case, the shrunk witness
+    (re-checked at dt/2) with a reproduction, and ``points`` for the plot (not in JSON)."""
+
+    claim: str
+    equation: str
+    verdict: str
+    worst_margin: float
+    n_cases: int
+    n_checked: int
+    excluded: dict[str, int]
+    min_cases: int
+    bound_scale: float = 1.0
+    closest: dict[str, Any] = field(default_factory=dict)
+    witness: dict[str, Any] | None = None
+    reproduction: str | None = None
+    why: str = ""
+    points: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    @property
+    def n_excluded(self) -> int:
+        return sum(self.excluded.values())
+
+    @property
+    def n_adaptive(self) -> int:  # read by the plugin for every system: lunar has no fallback
+        return 0
+
+    def to_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        d.pop("points")
+        d["n_excluded"] = self.n_excluded
+        d["fraction_checked"] = self.n_checked / self.n_cases if self.n_cases else 0.0
+        return d
+
+
+def _fly_cases(g: LoopGains, x1: np.ndarray, x2: np.ndarray, opts: VerifyOptions,
+               dt: float) -> tuple[list[dict], list[dict]]:
+    """Margins and (bound, observed) pairs of each case, all flown in one RK4 batch."""
+    n = len(x1)
+    X0 = np.zeros((9, n))
+    X0[0], X0[1:4], X0[8] = x1, x2.T, g.d0e0
+    case = GeneralCase(D=opts.D, u_max=opts.u_max)
+    with np.errstate(all="ignore"):
+        t, o = fly(X0, gain_arrays([g] * n), case, opts.t_end, dt)
+        ms, ps = [], []
+        for i in range(n):
+            p: dict = {}
+            ms.append(margins(t, o, g, case, float(x1[i]), dt, i, pairs=p))
+            ps.append(p)
+    return ms, ps
+
+
+def reproduction(g: LoopGains, x1_0: float, x2_0, opts: VerifyOptions, claim: str) -> str:
+    """A ready-to-paste snippet that flies the witness alone (the general system (5) has no
+    ``lgw simulate`` front: ``lgw simulate lunar`` flies the Section 5 closed loop) and prints
+    its margin for the claim, with the bound multiplied by the run's scale factor if any."""
+    f = float(opts.scale.get(claim, 1.0))
+    x2 = ", ".join(f"{float(v):.17g}" for v in x2_0)
+    gd = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in g.to_dict().items()}
+    return ("python - <<'EOF'\n"
+            "import numpy as np\n"
+            "from lgw.theory.lunar.gains import make_loop\n"
+            "from lgw.tuning.lunar.verify import VerifyOptions, _fly_cases\n"
+            f"g = make_loop('orbit', {gd!r})\n"
+            f"opts = VerifyOptions(t_end={opts.t_end!r}, u_max={opts.u_max!r}, D={opts.D!r})\n"
+            f"m, p = _fly_cases(g, np.array([{float(x1_0):.17g}]), np.array([[{x2}]]), opts, "
+            f"{opts.dt!r})\n"
+            f"b, o = p[0][{claim!r}]\n"
+            f"print('bound x {f!r}', b * {f!r}, 'observed', o, 'margin', 1 - o / (b * {f!r}))\n"
+            "EOF")
+
+
+def run_verify(g: LoopGains, opts: VerifyOptions = VerifyOptions()) -> list[ClaimResult]:
+    """Every claim of ``CLAIMS`` for one orbit-loop gain set: Hypothesis draws batches of
+    initial errors (``lgw.testing.lunar.state_batches``), each batch is flown by RK4 and every
+    case judged per claim (``_exclusion``: undefined margins are excluded, counted and shown);
+    a negative margin is shrunk by Hypothesis and the shrunk case re-flown alone at dt/2: a
+    confirmed negative margin is ``violated``, an unconfirmed one ``inconclusive``; fewer than
+    ``min_cases`` checked cases is ``inconclusive``."""
+    from hypothesis import target
+    from lgw.testing.engine import run_property
+    from lgw.testing.lunar import state_batches
+
+    scale = dict(opts.scale)
+    rec: dict[str, dict[str, Any]] = {c: {"m": [], "b": [], "o": [], "x1": [], "x2": [],
+                                          "cases": 0, "reasons": {}} for c in CLAIMS}
+
+    def check(example):
+        x1, x2 = example
+        ms, ps = _fly_cases(g, x1, x2, opts, opts.dt)
+        worst = None
+        for c in CLAIMS:
+            f = scale.get(c, 1.0)
+            r = rec[c]
+            r["cases"] += len(x1)
+            fin = []
+            for i, (m, p) in enumerate(zip(ms, ps, strict=True)):
+                m = _scaled(m[c], f) if c in scale else m[c]
+                why = _exclusion(c, m)
+                if why is not None:
+                    r["reasons"][why] = r["reasons"].get(why, 0) + 1
+                    continue
+                r["m"].append(m)
+                r["b"].append(p[c][0] * f)
+                r["o"].append(p[c][1])
+                r["x1"].append(float(x1[i]))
+                r["x2"].append([float(v) for v in x2[i]])
+                fin.append(m)
+                if m < 0 and (worst is None or m < worst["margin"]):
+                    worst = {"claim": c, "margin": float(m), "x1_0": float(x1[i]),
+                             "x2_0": [float(v) for v in x2[i]], "bound": p[c][0] * f,
+                             "observed": p[c][1],
+                             "source": f"RK4 dt = {opts.dt} s, shrunk by Hypothesis"}
+            if fin:
+                target(-float(min(fin)), label=c)
+        return worst
+
+    n_ex = opts.examples or PROFILES[opts.profile]["examples"]
+    fail = run_property(state_batches(*BATCH), check, examples=n_ex, seed=opts.seed,
+                        database=opts.database, key="lunar/orbit")
+    if fail is not None:
+        c = fail["claim"]
+        ms, _ = _fly_cases(g, np.array([fail["x1_0"]]), np.array([fail["x2_0"]]), opts,
+                           opts.dt / 2)
+        m2 = _scaled(ms[0][c], scale[c]) if c in scale else ms[0][c]
+        fail.update(rechecked_margin=float(m2),
+                    recheck_method=f"the case re-flown alone at dt = {opts.dt / 2} s",
+                    confirmed=bool(m2 < 0))
+    out = []
+    for c, eq in CLAIMS.items():
+        r = rec[c]
+        m = np.array(r["m"], float)
+        res = ClaimResult(c, eq, "holds", float(m.min()) if m.size else math.nan, r["cases"],
+                          int(m.size), dict(r["reasons"]), opts.min_cases, scale.get(c, 1.0))
+        res.points = {"bound": np.array(r["b"]), "observed": np.array(r["o"]),
+                      "violated": m < 0}
+        if m.size:
+            i = int(np.argmin(m))
+            res.closest = {"x1_0": r["x1"][i], "x2_0": r["x2"][i]}
+        if fail is not None and fail["claim"] == c:
+            res.witness = fail
+            res.reproduction = reproduction(g, fail["x1_0"], fail["x2_0"], opts, c)
+            res.verdict = "violated" if fail["confirmed"] else "inconclusive"
+            res.why = (f"margin {fail['margin']:.4g} at dt = {opts.dt} s, re-checked "
+                       f"{fail['rechecked_margin']:.4g} at dt/2"
+                       + ("" if fail["confirmed"] else " (not confirmed)"))
+        elif res.n_checked < opts.min_cases:
+            res.verdict = "inconclusive"
+            res.why = (f"{res.n_checked} checked cases < --min-cases {opts.min_cases} "
+                       f"({res.n_excluded} excluded)")
+        out.append(res)
+    return out
+
+
+def result_exit_code(results: list[ClaimResult]) -> int:
+    """1 when a claim is violated, else 4 when one is inconclusive, else 0."""
+    found = {r.verdict for r in results}
+    return 1 if "violated" in found else (4 if "inconclusive" in found else 0)
+
+
+def plot_panels(results: list[ClaimResult]) -> list[dict[str, Any]]:
+    """The panels of ``lgw.tuning.figures.observed_vs_bound``: L2 norms (squared for (19))
+    against their bounds; for (13) the largest V2 step outside the band over V2(0), bound 0."""
+    def unit(c: str) -> str:
+        return ("V2 step / V2(0)" if c == "V2_step_outside_band" else
+                "squared L2 norm" if c.startswith("(19") else "L2 norm")
+
+    return [{"claim": r.claim, "equation": r.equation, "excluded": r.n_excluded,
+             "unit": unit(r.claim), "ylabel": "observed", **r.points} for r in results]

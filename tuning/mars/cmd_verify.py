@@ -9,7 +9,7 @@ from pathlib import Path
 
 import click
 from lgw.theory.errors import ParameterError
-from lgw.tuning.io import console, json_document
+from lgw.tuning.io import check_out_dir, console, json_document
 from lgw.tuning.mars.options import resolve_gains
 from lgw.tuning.mars.verify import (
     CLAIMS,
@@ -56,7 +56,9 @@ def _fmt(x: float, spec: str = ".4g") -> str:
 @click.option("--min-cases", type=Integer(1, 10**7, "cases"), default=MIN_CASES,
               show_default=True, help="checked simulated cases a claim needs for 'holds'")
 @click.option("--database", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Hypothesis example database folder (replays earlier failures first)")
+              help="Hypothesis example database folder: replays earlier failures first and "
+                   "saves new ones; makes the run random (Hypothesis uses no database in a "
+                   "seeded run) [default: none]")
 @click.option("--dt", type=Number(0, 1, lo_open=True, unit="s"), default=0.05,
               show_default=True, help="RK4 step (s)")
 @click.option("--eps", type=Number(0, lo_open=True, unit="m or m/s"), default=0.05,
@@ -65,17 +67,21 @@ def _fmt(x: float, spec: str = ".4g") -> str:
               help="CLAIM=FACTOR: multiply a bound (self-test of the checker)")
 @click.option("--no-simulate", "no_sim", is_flag=True, hidden=True,
               help="search only (no simulation: every claim is then inconclusive or violated)")
+@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
+              default=None, help="write verify_mars.png (observed against bound, one point "
+                                 "per checked simulated case and axis) to DIR [default: none]")
 @click.option("--json", "as_json", is_flag=True,
               help="print one JSON object (schema: docs/json.md)")
 def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
             examples: int | None, min_cases: int, database: Path | None, dt: float, eps: float,
-            scale: tuple[str, ...], no_sim: bool, as_json: bool) -> None:
+            scale: tuple[str, ...], no_sim: bool, plot_dir: Path | None, as_json: bool) -> None:
     """Check seed 000's proven bounds for a gain set (corrected law).
 
     Per claim: a falsification search on the exact reduced per-axis loop and Hypothesis-driven
     simulations; the verdict is holds (>= --min-cases checked cases, no violation), violated
     (exit 1, shrunk witness and a ready-to-paste reproduction) or inconclusive (exit 4).
     """
+    check_out_dir(plot_dir, "--plot")  # before any work
     g = resolve_gains(gains_path)
     sc = {**certificate_scale(g), **_parse_scale(scale)}
     opts = VerifyOptions(profile=profile, seed=None if random_ else seed, database=database,
@@ -88,6 +94,15 @@ def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
         with con.status("verifying") as st:
             results = run_verify(g, opts, progress=lambda s: st.update(s))
     code = exit_code(results)
+    if plot_dir is not None:
+        from lgw.tuning.figures import write_verify_plot
+        from lgw.tuning.mars.verify import plot_panels
+
+        path = write_verify_plot(plot_dir, "mars", plot_panels(results),
+                                 f"lgw verify mars: profile {profile}, seed {opts.seed}, "
+                                 f"dt {dt} s")
+        if not as_json:
+            con.print(f"wrote {path}")
     if as_json:
         click.echo(json_document({"command": "verify mars", **g.to_dict(), "profile": profile,
                                   "seed": opts.seed, "dt": dt, "eps": eps,

@@ -115,6 +115,10 @@ class VerifyOptions:
     search: bool = True
 
     def __post_init__(self) -> None:
+        if self.database is not None:
+            # Hypothesis uses no example database in a seeded (derandomised) run, so a
+            # database makes the run random: saved failures are replayed first, new ones saved
+            object.__setattr__(self, "seed", None)
         if self.profile not in PROFILES:
             raise ParameterError("profile", self.profile, f"one of {', '.join(PROFILES)}")
         for name in ("dt", "eps"):
@@ -404,6 +408,7 @@ class ClaimResult:
     witness: dict[str, Any] | None = None
     reproduction: str | None = None
     why: str = ""
+    points: dict[str, Any] = field(default_factory=dict, repr=False)  # for --plot, not JSON
 
     @property
     def n_excluded(self) -> int:
@@ -411,8 +416,28 @@ class ClaimResult:
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
+        d.pop("points")
         d["n_excluded"] = self.n_excluded
         return d
+
+
+def _points(camp: Campaign, claim: str) -> dict[str, np.ndarray]:
+    """Every checked (case, axis) of a claim: bound, observed (minus the one-step tolerance)
+    and whether it violates (ratio > 1, which for the band claims includes leaving the band)."""
+    rows = camp.rows[claim]
+    if not rows:
+        return {"bound": np.zeros(0), "observed": np.zeros(0), "violated": np.zeros(0, bool)}
+    ratio = np.concatenate([r[0] for r in rows])
+    good = ratio != -np.inf
+    return {"bound": np.concatenate([r[2] for r in rows])[good],
+            "observed": np.concatenate([r[1] for r in rows])[good],
+            "violated": ratio[good] > 1.0}
+
+
+def plot_panels(results: list[ClaimResult]) -> list[dict[str, Any]]:
+    """The panels of ``lgw.tuning.figures.observed_vs_bound`` (times in s)."""
+    return [{"claim": r.claim, "equation": r.equation, "unit": "s", "excluded": r.n_excluded,
+             **r.points} for r in results]
 
 
 def _sim_summary(camp: Campaign, claim: str) -> dict[str, Any]:
@@ -615,6 +640,7 @@ def run_verify(g: Gains, opts: VerifyOptions = VerifyOptions(),
                           camp.adaptive[claim], dict(camp.excluded[claim]), opts.min_cases,
                           search=[{"axis": "xyz"[a], **s.to_dict(), "status": s.status}
                                   for a, s in searches], closest=summ["closest"])
+        res.points = _points(camp, claim)
         refuting = [(a, s) for a, s in searches if s.status == "refuted"]
         if refuting:
             a, s = refuting[0]

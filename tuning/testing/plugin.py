@@ -8,10 +8,15 @@ a report::
     def test_gains(lgw_verify):
         lgw_verify.assert_holds()
 
-The path is relative to the test file.  Options of the marker: system ("mars"), profile
-("ci" | "thorough"), seed (default 0; None for random), min_cases, examples, and database (a
+The path is relative to the test file.  Options of the marker: system ("mars", "lunar" or
+"eros": lgw.testing.SYSTEMS), profile ("ci" | "thorough"), seed (default: see below; None for
+random), min_cases, examples, scale (a dict claim -> factor on its bound: a self-test) and
+database (a
 folder for Hypothesis' example database; default the pytest cache folder
-``.pytest_cache/lgw-examples``, kept between CI runs by caching that folder).  The command-line
+``.pytest_cache/lgw-examples``, kept between CI runs by caching that folder).  A database makes
+the run random (Hypothesis uses none in a seeded run): without ``seed=`` the marker runs random
+examples with the cached database; with ``seed=S`` (and no ``database=``) a derandomised run
+without one.  The command-line
 option ``--lgw-profile`` overrides the marker's profile.
 """
 
@@ -55,7 +60,8 @@ class VerifyReport:
         lines = [f"lgw verify {self.system} {self.path}:"]
         for r in self.results:
             lines.append(f"  {r.claim} {r.equation}: {r.verdict} ({r.n_checked} checked, "
-                         f"{r.n_adaptive} by dopri5, {r.n_excluded} excluded)"
+                         f"{r.n_adaptive} by the fallback integrator, {r.n_excluded} "
+                         "excluded)"
                          + (f" - {r.why}" if r.why else ""))
             if r.witness:
                 lines.append(f"    shrunk witness: {r.witness}")
@@ -76,8 +82,11 @@ def lgw_verify(request: pytest.FixtureRequest) -> VerifyReport:
         raise pytest.UsageError("lgw_verify needs @pytest.mark.lgw_gains(path, ...)")
     opts = dict(mark.kwargs)
     system = opts.pop("system", "mars")
-    if system != "mars":
-        raise pytest.UsageError(f"lgw_gains: system {system!r} is not available (mars)")
+    from lgw.testing import SYSTEMS
+
+    if system not in SYSTEMS:
+        raise pytest.UsageError(f"lgw_gains: system {system!r} is not available "
+                                f"({', '.join(SYSTEMS)})")
     path = Path(mark.args[0])
     if not path.is_absolute():
         path = Path(request.node.fspath).parent / path
@@ -85,7 +94,9 @@ def lgw_verify(request: pytest.FixtureRequest) -> VerifyReport:
     if cli_profile:
         opts["profile"] = cli_profile
     cache = getattr(request.config, "cache", None)  # None under -p no:cacheprovider
-    if "database" not in opts and cache is not None:
+    if "database" not in opts and "seed" not in opts and cache is not None:
         opts["database"] = Path(cache.mkdir("lgw-examples"))
-    from lgw.testing.mars import check_bounds
+    import importlib
+
+    check_bounds = importlib.import_module(f"lgw.testing.{system}").check_bounds
     return VerifyReport(path, system, check_bounds(path, **opts))
