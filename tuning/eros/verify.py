@@ -50,6 +50,7 @@ from lgw.theory.eros import bounds as B
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros.gains import Gains, gains_to_toml
 from lgw.theory.errors import ParameterError
+from lgw.tuning.verify_common import check_run_options
 
 CLAIMS = {"reaching-known": "(15)-(18), D known", "time-known": "(6),(18), D known",
           "reaching-unknown": "(15)-(18), |D| <= dbar", "time-unknown": "(6),(18), |D| <= dbar"}
@@ -86,21 +87,7 @@ class VerifyOptions:
     v_max: float = P.MC_VEL
 
     def __post_init__(self) -> None:
-        if self.database is not None:
-            # Hypothesis uses no example database in a seeded (derandomised) run, so a
-            # database makes the run random: saved failures are replayed first, new ones saved
-            object.__setattr__(self, "seed", None)
-        if self.profile not in PROFILES:
-            raise ParameterError("profile", self.profile, f"one of {', '.join(PROFILES)}")
-        if self.min_cases < 1:
-            raise ParameterError("min-cases", self.min_cases, "must be >= 1")
-        if self.examples is not None and self.examples < 1:
-            raise ParameterError("examples", self.examples, "must be >= 1")
-        for k, v in self.scale.items():
-            if k not in CLAIMS:
-                raise ParameterError("scale", k, f"a claim name: {', '.join(CLAIMS)}")
-            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise ParameterError("scale", v, "a finite factor > 0")
+        check_run_options(self, PROFILES, CLAIMS)
         for name in ("e_max", "v_max"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):

@@ -21,6 +21,7 @@ from lgw.sim.lunar.general import GeneralCase, fly
 from lgw.theory.errors import ParameterError
 from lgw.theory.lunar.bounds import lambda_gain_bounds, transient_bounds, v2_initial, z_l2_bounds
 from lgw.theory.lunar.gains import LoopGains, make_loop
+from lgw.tuning.verify_common import check_run_options
 
 BAND = 3.0  # chattering band: ||z2|| <= BAND dt (d0e + D)
 
@@ -230,21 +231,7 @@ class VerifyOptions:
     D: float = 0.5
 
     def __post_init__(self) -> None:
-        if self.database is not None:
-            # Hypothesis uses no example database in a seeded (derandomised) run, so a
-            # database makes the run random: saved failures are replayed first, new ones saved
-            object.__setattr__(self, "seed", None)
-        if self.profile not in PROFILES:
-            raise ParameterError("profile", self.profile, f"one of {', '.join(PROFILES)}")
-        if self.min_cases < 1:
-            raise ParameterError("min-cases", self.min_cases, "must be >= 1")
-        if self.examples is not None and self.examples < 1:
-            raise ParameterError("examples", self.examples, "must be >= 1")
-        for k, v in self.scale.items():
-            if k not in SCALABLE:
-                raise ParameterError("scale", k, f"a claim name: {', '.join(SCALABLE)}")
-            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise ParameterError("scale", v, "a finite factor > 0")
+        check_run_options(self, PROFILES, SCALABLE)
         if not 0 < self.t_end <= 600:
             raise ParameterError("t-end", self.t_end, "must lie in (0, 600] s")
         if not 0 < self.dt <= 0.1:

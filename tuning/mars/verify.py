@@ -65,6 +65,7 @@ from lgw.theory.mars.parameters import (
     M0,  # Table I mass (the bounds do not depend on it: the law divides it out)
 )
 from lgw.theory.symbolic import np_sig
+from lgw.tuning.verify_common import check_run_options
 
 # Measured chattering floors (docs/sim.md "Chattering floor and eps", Table I, RK4):
 # max |s2| = 9.0e-3 m/s at dt = 0.05 s, fitted as 0.85 dt^1.5 over dt in [0.01, 0.2];
@@ -115,24 +116,10 @@ class VerifyOptions:
     search: bool = True
 
     def __post_init__(self) -> None:
-        if self.database is not None:
-            # Hypothesis uses no example database in a seeded (derandomised) run, so a
-            # database makes the run random: saved failures are replayed first, new ones saved
-            object.__setattr__(self, "seed", None)
-        if self.profile not in PROFILES:
-            raise ParameterError("profile", self.profile, f"one of {', '.join(PROFILES)}")
+        check_run_options(self, PROFILES, CLAIMS)
         for name in ("dt", "eps"):
             if not getattr(self, name) > 0:
                 raise ParameterError(name, getattr(self, name), "must be > 0")
-        if self.min_cases < 1:
-            raise ParameterError("min-cases", self.min_cases, "must be >= 1")
-        if self.examples is not None and self.examples < 1:
-            raise ParameterError("examples", self.examples, "must be >= 1")
-        for k, v in self.scale.items():
-            if k not in CLAIMS:
-                raise ParameterError("scale", k, f"a claim name: {', '.join(CLAIMS)}")
-            if not v > 0:
-                raise ParameterError("scale", v, "a factor > 0")
 
 
 def s2_floor(dt: float) -> float:
