@@ -162,11 +162,11 @@ def sup_dpsi_speed(sg: SatGains, i: int, R: float, s_b: float | None = None,
     return float(np.max(hi * speed))
 
 
-def growth_bound(p: np.ndarray, S: float, k1: float, e1: float) -> np.ndarray:
+def growth_bound(p: Any, S: Any, k1: float, e1: float) -> np.ndarray:
     """G = int_p^S (sigma - p)/(k1 sigma^e1) d sigma (m) for 0 <= p < S, else 0:
     (1/k1) [(S^(2-e1) - p^(2-e1))/(2-e1) - p (S^(1-e1) - p^(1-e1))/(1-e1)] (claim
     ``bounded-sat-growth``); it bounds the growth of |r| in Omega while |s| > psi(y) >= p."""
-    p = np.asarray(p, float)
+    p, S = np.asarray(p, float), np.asarray(S, float)
     q = np.minimum(p, S)
     g = ((S ** (2 - e1) - q ** (2 - e1)) / (2 - e1)
          - q * (S ** (1 - e1) - q ** (1 - e1)) / (1 - e1)) / k1
@@ -187,8 +187,7 @@ def radius_in_omega(sg: SatGains, i: int, R_in: float, S: float, n: int = 400) -
         return min(crude, float(growth_bound(0.0, min(S, float(sg.w0[i])), sg.k1[i], sg.e1)))
     a, b = _grid(R_in, n)
     cap = np.minimum(S, 2 * B.psi_np(b, sg, i) + sg.w0[i])
-    g = np.array([growth_bound(p, c, sg.k1[i], sg.e1)
-                  for p, c in zip(B.psi_np(a, sg, i), cap, strict=True)])
+    g = growth_bound(B.psi_np(a, sg, i), cap, sg.k1[i], sg.e1)
     return min(crude, max(float(np.max(b + g)), R_in))
 
 
