@@ -316,6 +316,7 @@ def _sat_outside_law() -> sp.Expr:
     return law.xreplace({sat[0]: W}) + grav + am + ap
 
 
+@cache
 def claim_sat_outside() -> Claim:
     """Outside Omega (v > W(r), the case v < -W(r) is the mirror image: the law is odd in
     (r, v)): s > w0 and v' = -psi'(r) W(r) - k(s) + a_p <= -D, D = inf psi'W + k(w0) - a_max,
@@ -346,6 +347,7 @@ def claim_sat_outside() -> Claim:
                  "T_out <= (v0 - w0)/D, excursion <= (v0^2 - w0^2)/(2D)", steps, law=NAME_SAT)
 
 
+@cache
 def claim_sat_growth() -> Claim:
     """In Omega |r| grows only while |s| > psi(|r|); with y = min |r| so far, |r| - y <=
     G(psi(y), min(S, 2 psi(y) + w0)), G(p, S) = int_p^S (sigma - p)/(k1 sigma^e1) d sigma in
@@ -397,7 +399,7 @@ def _sat_cells_search(n: int = 6, seed: int = 3) -> Step:
                                         "dense sampling", evals, worst, pt, seed))
 
 
-def _sat_ivp_search(n: int = 10, seed: int = 2) -> Step:
+def _sat_ivp_search(n: int = 4, seed: int = 2) -> Step:
     from lgw.theory.mars import bounded_sat as BS
     sg = BS.default_sat()
     rng = np.random.default_rng(seed)
