@@ -24,7 +24,12 @@ from lgw.theory.mars.bounded_claims import TABLE3_AXES, all_claims, fly_axis
 from lgw.theory.mars.gains import default_gains, load_gains
 from lgw.theory.mars.parameters import G_MARS, M0
 from lgw.tuning.mars.design import envelope_from_name
-from lgw.tuning.mars.design_bounded import BoundedRequest, axis_certificate, tune_bounded
+from lgw.tuning.mars.design_bounded import (
+    BoundedRequest,
+    axis_certificate,
+    packed_states,
+    tune_bounded,
+)
 
 RNG = np.random.default_rng(1717)
 NAME = BS.NAME
@@ -158,15 +163,17 @@ STATE = st.tuples(*(st.floats(0.0, 1.0) for _ in range(6)))
 @settings(max_examples=6, deadline=None)
 @given(st.lists(STATE, min_size=8, max_size=8))
 def test_simulated_landing_within_proven_bound(us):
-    """The batch simulator (RK4, 50 kN per axis) from Table III states: no saturation, lands,
+    """The batch simulator (RK4, 50 kN per axis) from Table III states (random, plus every
+    per-axis corner and r0 = 0, where the peaks are): no saturation, lands,
     landing time <= the proven bound, per-axis peak thrust <= the proven thrust bound."""
     sg = BS.default_sat()
     u = np.array(us)
     lo = np.array([[b.r_lo for b in TABLE3_AXES], [b.v_lo for b in TABLE3_AXES]])
     hi = np.array([[b.r_hi for b in TABLE3_AXES], [b.v_hi for b in TABLE3_AXES]])
-    r0 = lo[0] + u[:, :3] * (hi[0] - lo[0])
-    v0 = lo[1] + u[:, 3:] * (hi[1] - lo[1])
     boxes = [(np.r_[lo[0], lo[1], M0], np.r_[hi[0], hi[1], M0])]
+    rc, vc, _ = packed_states(boxes, M0, n_grid=2, n_mc=0)  # every per-axis corner, r0 = 0
+    r0 = np.vstack([lo[0] + u[:, :3] * (hi[0] - lo[0]), rc])
+    v0 = np.vstack([lo[1] + u[:, 3:] * (hi[1] - lo[1]), vc])
     cert = [axis_certificate(sg, i, boxes, M0) for i in range(3)]
     T = max(c["T_land"] for c in cert)
     res = simulate_batch(r0, v0, np.full(len(r0), M0), _gains(sg), law=NAME,
