@@ -157,6 +157,30 @@ def test_bounds_hold_on_solve_ivp(x):
     assert o["r"] <= d["R_b"] * (1 + 1e-9) and o["v"] <= d["V_b"] * (1 + 1e-9)
 
 
+GAINS = st.fixed_dictionaries({
+    "c1": st.floats(1.0, 5.0), "delta": st.floats(5.0, 100.0), "k1": st.floats(0.5, 5.0),
+    "k2": st.floats(1e-6, 1e-3), "w0": st.floats(1.0, 10.0), "e1": st.floats(0.2, 0.6)})
+BOX = st.tuples(st.floats(-2000, 2000), st.floats(0, 1500), st.floats(-100, 60),
+                st.floats(0, 80))
+
+
+@settings(max_examples=5, deadline=None)
+@given(GAINS, BOX, st.integers(0, 2))
+def test_bounds_hold_for_random_gains_and_boxes(gd, bx, i):
+    """The bounds are for any valid gains and box, not only the tuned ones: random gains, a
+    random box, its corners and r0 = 0 flown by solve_ivp on the SymPy law."""
+    sg = BS.sat_gains_from_dict({**BS.DEFAULT_SAT, **gd, "c2": 1e-9, "p2": 1.5, "e2": 1.5})
+    box = B.AxisBox(bx[0], bx[0] + bx[1], bx[2], bx[2] + bx[3])
+    d = BS.axis_box_bounds_sat(sg, i, box)
+    pts = [(a, b) for a in (box.r_lo, box.r_hi) for b in (box.v_lo, box.v_hi)]
+    if box.r_lo < 0 < box.r_hi:
+        pts += [(0.0, box.v_lo), (0.0, box.v_hi)]
+    for r0, v0 in pts:
+        o = fly_axis(sg, i, r0, v0, t_max=d["T_land"] + 5)
+        assert o["t_land"] <= d["T_land"] and o["u"] <= d["u_b"]
+        assert o["r"] <= d["R_b"] * (1 + 1e-9) and o["v"] <= d["V_b"] * (1 + 1e-9)
+
+
 STATE = st.tuples(*(st.floats(0.0, 1.0) for _ in range(6)))
 
 
