@@ -10,8 +10,14 @@
                                                bounded`` against today's corrected-law tuner, same
                                                run (ratio); then fresh Table III (500) and Table
                                                II (1000) campaigns with the tuned bounded gains
-  python benchmarks/bench_tune.py bounded-sat the saturated-cancellation variant (not certified):
-                                               the same campaigns at tf = 60 s, simulated only
+  python benchmarks/bench_tune.py bounded-sat the saturated-cancellation law ``--law bounded-sat``:
+                                               end-to-end ``tune_bounded`` time against the
+                                               corrected-law tuner measured in the same run
+                                               (ratio; ``--baseline-from FILE`` reuses a
+                                               baseline JSON this mode wrote earlier, said so
+                                               in the output), then fresh Table III (500) and
+                                               Table II (1000) campaigns of the tuned gains
+                                               with the post-arrival peaks from trajectories
   python benchmarks/bench_tune.py all
 
 Every number printed comes from ``lgw.tuning.mars.design`` and
@@ -159,14 +165,14 @@ def _tune_bounded_e2e(tf: float, thrust: float, envelope: str) -> tuple[float, o
 
 def bounded_campaign(gains, tf: float, thrust: float, name: str, n: int, seed: int,
                      dt: float = 0.02, chunk: int = 250, law: str = "bounded",
-                     extra: dict | None = None) -> dict:
+                     extra: dict | None = None, table: str = "bounded") -> dict:
     """A fresh campaign with the bounded law, simulated apart from the tuner (other states and
     seed, RK4 at dt = 0.02 s instead of the tuner's 0.05 s, trajectories recorded)."""
     from dataclasses import replace as _replace
 
     from lgw.sim.mars.batch import simulate_batch
     from lgw.theory.mars.gains import default_gains
-    g = _replace(default_gains(), extra={"bounded": gains.to_dict(), **(extra or {})})
+    g = _replace(default_gains(), extra={table: gains.to_dict(), **(extra or {})})
     fn = table3_states if name == "table3" else table2_states
     r0, v0, m0 = fn(n, seed=seed)
     acc: dict[str, list] = {k: [] for k in ("lt", "landed", "peak", "sat", "alt", "after")}
@@ -245,32 +251,67 @@ def bench_bounded(tf: float = 60.0, thrust: float = 50_000.0, envelope: str = "t
     return out
 
 
-# Hand-picked (not tuned) gains for the saturated-cancellation variant: psi'(0) = c1/sqrt(delta)
-# = 1 /s, w0 = 5 m/s.
-SAT_GAINS = {"c1": 4.0, "delta": 16.0, "c2": 1e-9, "k1": 4.0, "k2": 1e-5, "p2": 1.5, "e1": 0.2,
-             "e2": 1.5}
-SAT_W0 = 5.0
+SAT_SEEDS = {"table3": 17_031, "table2": 17_032}  # campaign seeds (tuner: seed 0)
 
 
-def bench_bounded_sat(tf: float = 60.0, thrust: float = 50_000.0, n3: int = 500,
-                      n2: int = 1000) -> dict:
-    """Issue 17, next step: ``lgw.theory.mars.bounded.law_bounded_sat`` (no proven time bound
-    yet, so not registered in lgw.sim.mars.laws) registered here for the run, flown on fresh
-    campaigns with hand-picked gains.  Every number is simulated."""
-    from lgw.sim.mars.laws import LawSpec, register_law
-    from lgw.theory.mars import bounded as B
-
-    def params(g):
-        return np.column_stack([B.bounded_from_extra(g.extra).params(),
-                                np.full(3, float(g.extra["w0"]))])
-    register_law(LawSpec("bounded-sat-experimental", B.law_bounded_sat, B.PARAMS_SAT, params,
-                         "bounded law with saturated cancellation (experiment)"))
-    bg = B.bounded_gains_from_dict(SAT_GAINS)
-    out = {"law": "bounded-sat-experimental", "gains": SAT_GAINS, "w0": SAT_W0}
+def bench_bounded_sat(tf: float = 60.0, thrust: float = 50_000.0,
+                      envelope: str = "table3+table2", n3: int = 500, n2: int = 1000,
+                      baseline: bool = True, baseline_from: str | None = None,
+                      out_file: str | None = None) -> dict:
+    """``--law bounded-sat`` end to end (design, plus the simulation check only when the proven
+    bound misses tf), the corrected-law tuner (``tune`` + ``nearest_feasible_tf``) on the same
+    request and envelope in the same run, and fresh campaigns of the tuned gains (RK4 at
+    dt = 0.02 s, trajectories recorded, flown to tf + 5 s; other states and seeds than the
+    tuner's).  Every number is measured here."""
+    from lgw.theory.mars import bounded_sat as BS
+    from lgw.tuning.mars.design_bounded import BoundedRequest, simulate_check, tune_bounded
+    env = envelope_from_name(envelope)
+    warm = time.perf_counter()
+    req = BoundedRequest(tf=tf, thrust_max=thrust)
+    simulate_check(BS.default_sat(), req, env.boxes, env.m_max, t_max=5.0, n_mc=1)
+    warm = time.perf_counter() - warm
+    t = time.perf_counter()
+    res = tune_bounded(req, env.boxes, env.m_max, law=BS.NAME, simulate=lambda g: simulate_check(
+        g, req, env.boxes, env.m_max, t_max=max(1.5 * tf, tf + 20)))
+    t_new = time.perf_counter() - t
+    out: dict = {"problem": f"tf={tf:g} s, {thrust:g} N/axis, envelope {envelope}",
+                 "law": BS.NAME, "compile_s": warm, "e2e_s": t_new, "feasible": res.feasible,
+                 "time_proven": res.time_proven, "T_proven": res.T_proven,
+                 "F_proven": res.F_proven, "timings": res.timings}
+    print(json.dumps(out, indent=1, default=float), flush=True)
+    tf_c = tf if res.feasible else float(np.ceil(res.T_proven * 10) / 10)
+    out["gains"] = res.gains.to_dict()
     for name, n in (("table3", n3), ("table2", n2)):
-        out[name] = bounded_campaign(bg, tf, thrust, name, n, BOUNDED_SEEDS[name],
-                                     law="bounded-sat-experimental", extra={"w0": SAT_W0})
-        print(json.dumps(out[name], indent=1, default=float), flush=True)
+        if n > 0:
+            out[name] = bounded_campaign(res.gains, tf_c, thrust, name, n, SAT_SEEDS[name],
+                                         law=BS.NAME, table=BS.TABLE)
+            print(json.dumps(out[name], indent=1, default=float), flush=True)
+    if baseline_from:
+        with open(baseline_from) as f:
+            base = json.load(f)
+        out["corrected_e2e_s"] = base["corrected_e2e_s"]
+        out["baseline_source"] = (f"{baseline_from} (measured in an earlier run, not this "
+                                  "one)")
+    elif baseline:
+        _warm()
+        t = time.perf_counter()
+        b = tune(Request(tf=tf, thrust_max=thrust), env)
+        t_old = time.perf_counter() - t
+        if not b.feasible:
+            t = time.perf_counter()
+            nearest_feasible_tf(replace(Request(tf=tf, thrust_max=thrust),
+                                        tf=max(tf, b.tf_min_envelope)), env)
+            t_old += time.perf_counter() - t
+        out.update({"corrected_e2e_s": t_old, "corrected_feasible": b.feasible,
+                    "baseline_source": "measured in this run"})
+    if "corrected_e2e_s" in out:
+        out["ratio_corrected_over_bounded_sat"] = out["corrected_e2e_s"] / t_new
+        print(json.dumps({k: out[k] for k in ("corrected_e2e_s", "baseline_source",
+                                              "ratio_corrected_over_bounded_sat")},
+                         default=float), flush=True)
+    if out_file:
+        with open(out_file, "w") as f:
+            json.dump(out, f, indent=1, default=float)
     return out
 
 
@@ -281,6 +322,12 @@ def main() -> None:
     ap.add_argument("--no-baseline", action="store_true", help="bounded: skip the corrected tuner")
     ap.add_argument("--envelope", default=None)
     ap.add_argument("--tf", type=float, nargs="*", default=None)
+    ap.add_argument("--baseline-from", default=None,
+                    help="bounded-sat: take corrected_e2e_s from a JSON this mode wrote (--save) "
+                         "instead of re-measuring it (~20 min); the output says so")
+    ap.add_argument("--save", default=None, help="bounded-sat: write the result JSON here")
+    ap.add_argument("--cases", type=int, nargs=2, default=(500, 1000),
+                    help="bounded-sat: Table III and Table II campaign sizes (0 skips)")
     args = ap.parse_args()
     np.set_printoptions(precision=4)
     if args.what in ("time", "all"):
@@ -293,7 +340,9 @@ def main() -> None:
     if args.what in ("bounded", "all"):
         bench_bounded(baseline=not args.no_baseline)
     if args.what in ("bounded-sat", "all"):
-        bench_bounded_sat()
+        bench_bounded_sat(envelope=args.envelope or "table3+table2", n3=args.cases[0],
+                          n2=args.cases[1], baseline=not args.no_baseline,
+                          baseline_from=args.baseline_from, out_file=args.save)
 
 
 if __name__ == "__main__":

@@ -160,8 +160,12 @@ def claim_invariants() -> Claim:
 
 
 @cache
-def _u_numeric():
-    u = B.law_bounded() + grav + am  # the commanded v' without disturbance
+def _u_numeric(sat: bool = False):
+    """The commanded v' without disturbance (a + g + a_m), lambdified from the SymPy law."""
+    if sat:
+        u = B.law_bounded_sat() + grav + am
+        return sp.lambdify((r, v, *B.PARAMS_SAT), u, modules=LAMBDIFY_MODULES)
+    u = B.law_bounded() + grav + am
     return sp.lambdify((r, v, *B.PARAMS), u, modules=LAMBDIFY_MODULES)
 
 
@@ -173,7 +177,7 @@ TABLE3_AXES = (B.AxisBox(-1000.0, 200.0, -15.0, 45.0), B.AxisBox(0.0, 2000.0, -1
 S_EPS = 1e-7  # m/s
 
 
-def fly_axis(bg: B.BoundedGains, i: int, r0: float, v0: float, t_max: float = 300.0,
+def fly_axis(bg, i: int, r0: float, v0: float, t_max: float = 300.0,
              tol: tuple[float, float] = (0.1, 0.1)) -> dict[str, float]:
     """One axis of the closed loop by solve_ivp (RK45, rtol = atol = 1e-10) from the SymPy law:
     max |r|, |v|, |u| along the way and the first time |r| <= tol[0] and |v| <= tol[1].
@@ -182,9 +186,10 @@ def fly_axis(bg: B.BoundedGains, i: int, r0: float, v0: float, t_max: float = 30
     Lipschitz at s = 0 and the step size would shrink without end), then the sliding phase
     r' = -psi(r), v = -psi(r) (|s| is nonincreasing and stays 0 once it is 0; starting it at
     |s| = S_EPS errs by at most S_EPS in v and 2 sqrt(S_EPS)/k1 in time, both far below the
-    margins compared)."""
+    margins compared).  ``bg`` a ``bounded_sat.SatGains`` flies ``law_bounded_sat``: |s| > w0
+    outside Omega, so the event is met inside it, where the two laws coincide."""
     from scipy.integrate import solve_ivp
-    f = _u_numeric()
+    f = _u_numeric(hasattr(bg, "w0"))
     P = bg.params()[i]
 
     def rhs(t, y):
@@ -267,7 +272,8 @@ def claim_fixed_time() -> Claim:
 @cache
 def all_claims() -> tuple[Claim, ...]:
     return (claim_derivative(), claim_finite(), claim_psi_monotone(), claim_slide_time(),
-            claim_invariants(), claim_fixed_time(), claim_sat_invariance())
+            claim_invariants(), claim_fixed_time(), claim_sat_invariance(),
+            claim_sat_outside(), claim_sat_growth(), claim_sat_bounds())
 
 
 def claim_sat_invariance() -> Claim:
@@ -298,3 +304,141 @@ def claim_sat_invariance() -> Claim:
                  "region is forward invariant", "(not in seed 000)", "d(|v| - W(r))/dt < 0 on "
                  "|v| = W(r): once |v| <= psi(|r|) + w0 the variant is the bounded law", steps,
                  law=LAW)
+
+
+# --- the saturated variant's box bounds (lgw.theory.mars.bounded_sat) ----------------------
+
+def _sat_outside_law() -> sp.Expr:
+    """v' of ``law_bounded_sat`` with sat(v, W) replaced by W (the branch v > W(r))."""
+    W = B.sat_limit()
+    law = B.law_bounded_sat()
+    sat = [m for m in law.atoms(sp.Max)]
+    return law.xreplace({sat[0]: W}) + grav + am + ap
+
+
+@cache
+def claim_sat_outside() -> Claim:
+    """Outside Omega (v > W(r), the case v < -W(r) is the mirror image: the law is odd in
+    (r, v)): s > w0 and v' = -psi'(r) W(r) - k(s) + a_p <= -D, D = inf psi'W + k(w0) - a_max,
+    so T_out <= (v0 - w0)/D and r moves by <= (v0^2 - w0^2)/(2D) (``axis_box_bounds_sat``)."""
+    steps = _branches(B.psi().subs(r, -r) + B.psi(), r, "psi is odd: psi(-r) = -psi(r)")
+    steps.append(prove_nonneg(B.psi().subs(r, X) + B.psi().subs(r, X), "r > 0: psi(|r|) + "
+                              "psi(r) = 2 psi(x) >= 0 (r < 0: = 0 by oddness)"))
+    vv, pa, pr, ww, w0 = sp.symbols("v psi_abs psi_r W w0", real=True)
+    steps.append(prove_z3(sp.StrictGreaterThan(vv + pr, w0),
+                          [vv > ww, sp.Eq(ww, pa + w0), pa + pr >= 0],
+                          "v > W = psi(|r|) + w0 and psi(|r|) + psi(r) >= 0 imply s = v + "
+                          "psi(r) > w0"))
+    vdot = _sat_outside_law()
+    want = -B.dpsi() * B.sat_limit() + B.reaching(B.surface()) + ap
+    steps.append(prove_identity(vdot - want, "v > W: sat(v, W) = W, v' = -psi'(r) W(r) - "
+                                "k1 sig(s,e1) - k2 sig(s,e2) + a_p"))
+    sp_ = sp.Symbol("sigma", positive=True)
+    steps.append(prove_nonneg(sp.diff(B.k1 * sp_ ** B.e1 + B.k2 * sp_ ** B.e2, sp_),
+                              "k(sigma) = k1 sigma^e1 + k2 sigma^e2 increases, so k(s) > k(w0)",
+                              strict=True))
+    D, v0 = sp.symbols("D v_0", positive=True)
+    steps.append(prove_identity(sp.integrate(vv / D, (vv, w0, v0)) - (v0**2 - w0**2) / (2 * D),
+                                "dr = v dt <= -v dv/D: r moves by <= int_w0^v0 v/D dv = "
+                                "(v0^2 - w0^2)/(2D) while outside"))
+    return Claim("bounded-sat-outside", "issue 17", "Saturated variant: outside the "
+                 "exact-cancellation region |v| decreases at a rate >= D", "(not in seed 000)",
+                 "v > psi(|r|) + w0 implies s > w0 and v' <= -(inf psi'W + k(w0) - a_max): "
+                 "T_out <= (v0 - w0)/D, excursion <= (v0^2 - w0^2)/(2D)", steps, law=NAME_SAT)
+
+
+@cache
+def claim_sat_growth() -> Claim:
+    """In Omega |r| grows only while |s| > psi(|r|); with y = min |r| so far, |r| - y <=
+    G(psi(y), min(S, 2 psi(y) + w0)), G(p, S) = int_p^S (sigma - p)/(k1 sigma^e1) d sigma in
+    closed form (``bounded_sat.growth_bound``)."""
+    p_, S_, sg_ = sp.symbols("p S sigma", positive=True)
+    e1 = B.e1
+    G = ((S_ ** (2 - e1) - p_ ** (2 - e1)) / (2 - e1)
+         - p_ * (S_ ** (1 - e1) - p_ ** (1 - e1)) / (1 - e1)) / B.k1
+    steps = [prove_identity(sp.expand(sp.diff(G, S_) - (S_ - p_) / (B.k1 * S_ ** e1)),
+                            "dG/dS = (S - p)/(k1 S^e1)"),
+             prove_identity(G.subs(S_, p_), "G(p, p) = 0"),
+             prove_nonneg(B.k2 * sg_ ** B.e2, "k(sigma) >= k1 sigma^e1 (k2 sigma^e2 >= 0)"),
+             prove_nonneg(sg_ ** (-e1) / B.k1, "the integrand's weight "
+                          "1/(k1 sigma^e1) > 0: G increases in S and decreases in p",
+                          strict=True)]
+    vv, pa, pr, w0 = sp.symbols("v psi_abs psi_r w0", real=True)
+    steps.append(prove_z3(sp.Abs(vv + pr) <= 2 * pa + w0,
+                          [sp.Abs(vv) <= pa + w0, sp.Abs(pr) <= pa, w0 > 0],
+                          "in Omega |v| <= psi(|r|) + w0, so |s| <= 2 psi(|r|) + w0"))
+    steps.append(Step("so |r(t)| <= sup_y y + G(psi(y), min(S, 2 psi(y) + w0)) (d|r|/dt <= "
+                      "|s| - psi(|r|), d|s|/dt = -k(|s|) in Omega)",
+                      Cited(COMPARISON_REF, "comparison lemma in the variable |s|",
+                            tuple(steps))))
+    return Claim("bounded-sat-growth", "issue 17", "Saturated variant: growth of |r| inside "
+                 "the exact-cancellation region", "(not in seed 000)",
+                 "|r(t)| <= sup_{y <= R_in} y + G(psi(y), min(S, 2 psi(y) + w0))", steps,
+                 law=NAME_SAT, derived_expr=sp.Eq(sp.Symbol("G"), G))
+
+
+def _sat_cells_search(n: int = 6, seed: int = 3) -> Step:
+    """The cell bounds (inf psi'W, sup psi' W) against a dense sampling of the functions."""
+    from lgw.theory.mars import bounded_sat as BS
+    sg = BS.default_sat()
+    rng = np.random.default_rng(seed)
+    worst, pt, evals = np.inf, {}, 0
+    for _ in range(n):
+        i, R = int(rng.integers(3)), float(10 ** rng.uniform(0, 3.5))
+        x = np.linspace(0.0, R, 20001)
+        dpsi = (sg.c1[i] * (sg.delta[i] + x / 2) * (sg.delta[i] + x) ** -1.5
+                + sg.c2[i] * sg.p2 * x ** (sg.p2 - 1))
+        f = dpsi * (B.psi_np(x, sg, i) + sg.w0[i])
+        lo, hi = BS.inf_dpsi_w(sg, i, R), BS.sup_dpsi_speed(sg, i, R)
+        evals += len(x)
+        for m, q in ((f.min() - lo, "inf"), (hi - f.max(), "sup")):
+            if m < worst:
+                worst, pt = float(m), {"axis": i, "R": R, "which": q}
+    return Step("cell bounds of inf/sup psi'(x) W(x) on [0, R] vs 20,001-point sampling "
+                "(DEFAULT_SAT)", Search({"R": (1, 10**3.5), "axis": (0, 2)},
+                                        "dense sampling", evals, worst, pt, seed))
+
+
+def _sat_ivp_search(n: int = 4, seed: int = 2) -> Step:
+    from lgw.theory.mars import bounded_sat as BS
+    sg = BS.default_sat()
+    rng = np.random.default_rng(seed)
+    worst, pt, evals = np.inf, {}, 0
+    for i, box in enumerate(TABLE3_AXES):
+        d = BS.axis_box_bounds_sat(sg, i, box)
+        pts = [(a, b) for a in (box.r_lo, box.r_hi, min(max(0.0, box.r_lo), box.r_hi))
+               for b in (box.v_lo, box.v_hi)]
+        pts += [(rng.uniform(box.r_lo, box.r_hi), rng.uniform(box.v_lo, box.v_hi))
+                for _ in range(n)]
+        for r0, v0 in pts:
+            o = fly_axis(sg, i, r0, v0, t_max=1.2 * d["T_land"] + 5)
+            evals += 1
+            for key, bound in (("r", d["R_b"]), ("v", d["V_b"]), ("u", d["u_b"]),
+                               ("t_land", d["T_land"])):
+                m = (bound - o[key]) / bound
+                if m < worst:
+                    worst, pt = m, {"axis": i, "r0": r0, "v0": v0, "quantity": key,
+                                    "bound": bound, "observed": o[key]}
+    return Step("box bounds >= the solve_ivp closed loop of law_bounded_sat (DEFAULT_SAT, "
+                "Table III per axis: corners, r0 = 0 and random states)",
+                Search({"box": "seed 000 Table III per axis", "gains": "DEFAULT_SAT"},
+                       "solve_ivp RK45 1e-10 (two phases) on the SymPy law", evals, worst, pt,
+                       seed, relative=True))
+
+
+def claim_sat_bounds() -> Claim:
+    """The box bounds of ``axis_box_bounds_sat`` (time, state, command) for the gain set."""
+    hyp = tuple(claim_sat_outside().steps) + tuple(claim_sat_growth().steps) + tuple(
+        claim_sat_invariance().steps)
+    steps = [Step("T_land <= max(T_out + T_s(S_entry), T_s(S_start)) + T_r(R_b -> rho): "
+                  "outside by T_out, then the bounded law in Omega (exact settling time of s, "
+                  "then the sliding phase of bounded-slide-time)",
+                  Cited(FIXED_TIME_REF, "fixed-time settling of the reaching law", hyp)),
+             _sat_cells_search(), _sat_ivp_search()]
+    return Claim("bounded-sat-bounds", "issue 17", "Saturated variant: state, command and time "
+                 "bounds over a box", "(not in seed 000)", "|r| <= R_b, |v| <= V_b, |a+g+a_m| "
+                 "<= u_b, landing by T_land (lgw.theory.mars.bounded_sat.axis_box_bounds_sat)",
+                 steps, law=NAME_SAT, scope="gain-set")
+
+
+NAME_SAT = "bounded-sat"

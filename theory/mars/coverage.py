@@ -151,6 +151,8 @@ COVERAGE: tuple[R, ...] = (
        "bounded-slide-time")),
     R("bounded law: practical fixed time, box invariants, saturated variant", "workbench law",
       ("bounded-fixed-time", "bounded-invariants", "bounded-sat-invariance")),
+    R("bounded-sat law: outside deceleration, growth in Omega, box bounds (time, command)",
+      "workbench law", ("bounded-sat-outside", "bounded-sat-growth", "bounded-sat-bounds")),
 )
 
 

@@ -95,10 +95,11 @@ def whole_box_note(env: Envelope, forced_fraction: float, thrust_max: float,
 @click.option("--no-suggest", is_flag=True, help="do not search the nearest feasible tf")
 @click.option("--json", "as_json", is_flag=True,
               help="print the certificate as JSON (schema: docs/json.md)")
-@click.option("--law", type=choice(("corrected", "bounded")), default="corrected",
+@click.option("--law", type=choice(("corrected", "bounded", "bounded-sat")), default="corrected",
               show_default=True,
-              help="law to tune: corrected (seed 000 with exact cancellation) or bounded "
-                   "(issue 17: proven command bound, no keep-out)")
+              help="law to tune: corrected (seed 000 with exact cancellation), bounded "
+                   "(issue 17: proven command bound, no keep-out) or bounded-sat (bounded "
+                   "with the cancellation saturated at psi(|r|) + w0)")
 @click.option("--out", type=click.Path(path_type=Path), required=True,
               help="the gains TOML file to write (one file, with a [certificate] table); its "
                    "folder must exist; checked before any work, written atomically")
@@ -108,10 +109,10 @@ def command(tf: float, thrust_max: float, limit: str, envelope: str,
             fast: bool, no_suggest: bool, as_json: bool, law: str, out: Path) -> None:
     """Tune the corrected law's gains for a landing-time bound TF and a thrust limit."""
     check_out_file(out)
-    if law == "bounded":
+    if law in ("bounded", "bounded-sat"):
         from lgw.tuning.mars.design_bounded import run_cli
         sys.exit(run_cli(tf, thrust_max, limit, envelope, seed, no_suggest, as_json, out,
-                         command="lgw tune mars " + " ".join(sys.argv[3:])))
+                         command="lgw tune mars " + " ".join(sys.argv[3:]), law=law))
     req = Request(tf=tf, thrust_max=thrust_max, limit=limit, bound=bound, objective=objective,
                   a_max=a_max, neighborhood=neighborhood, theta1=theta1, theta2=theta2)
     req.check()
