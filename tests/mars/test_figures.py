@@ -67,9 +67,10 @@ def test_compare_figure_has_the_limit_and_a_shared_legend(kept) -> None:
     from lgw.tuning.mars.compare import figure_png
 
     t = np.linspace(0.0, 10.0, 11)
-    trajs = [{"label": lab, "disturbance": dist, "t": t, "r": np.ones((11, 3)),
-              "F": np.full((11, 3), 1e4)} for lab in ("A", "B") for dist in ("none", "sin")]
-    assert figure_png(trajs, 1.0)[:8] == PNG
+    trajs = [{"label": lab, "disturbance": dist, "dist_amplitude": amp, "ended": "landed",
+              "t": t, "r": np.ones((11, 3)), "F": np.full((11, 3), 1e4)}
+             for lab in ("A", "B") for dist, amp in (("none", 0.0), ("sin", 1.0))]
+    assert figure_png(trajs, THRUST_MAX_AXIS)[:8] == PNG
     fig = kept[-1]
     thrust_panels = [ax for ax in fig.get_axes() if "F_i" in ax.get_ylabel()]
     assert len(thrust_panels) == 2

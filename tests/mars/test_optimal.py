@@ -165,11 +165,11 @@ def test_compare_optimal_rows_and_figure(tmp_path) -> None:
     from lgw.tuning.mars.compare import _fmt, _optimal_rows
     from lgw.tuning.mars.compare import figure as _figure
 
-    rows, trajs = _optimal_rows(1.0, "none", 30)
+    rows, trajs = _optimal_rows([("none", 0.0), ("sin", 1.0)], "none", 30, THRUST_MAX_AXIS)
     assert [r["disturbance"] for r in rows] == ["none", "sin"]
     assert rows[0]["landed"] and rows[0]["pos_error"] < 1e-3
     assert not rows[1]["landed"] and rows[1]["outcome"].startswith("crashed")
     assert rows[0]["fuel"] < rows[0]["paper_fuel"]  # the optimum is below the paper's GPOPS
-    _figure(trajs, 1.0, tmp_path / "c.png")
+    _figure(trajs, THRUST_MAX_AXIS, tmp_path / "c.png")
     assert (tmp_path / "c.png").stat().st_size > 10_000
     assert _fmt(float("nan"), "9.2f") == " " * 8 + "-"
