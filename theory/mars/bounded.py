@@ -163,7 +163,9 @@ def bounded_gains_from_dict(d: dict[str, Any]) -> BoundedGains:
 
 # Default gain set: the output of ``lgw tune mars --law bounded --tf 101.6 --thrust-max 50000``
 # on the default Table III + Table II envelope (the nearest tf its proven bound meets; see
-# docs/tuning.md): proven |F_i| <= 49.0 kN on the whole envelope, proven landing bound 101.5 s.
+# docs/tuning.md): proven |F_i| <= 49.0 kN on the whole envelope, proven landing bound 104.9 s
+# to the Euclidean landing ball (101.5 s to the per-axis box |r_i|, |v_i| <= 0.1 it was tuned
+# against before the tuner's landing set was corrected to 0.1/sqrt(3) per axis).
 DEFAULT_BOUNDED = {"c1": [2.311, 2.243, 2.013], "delta": [112.6, 185.8, 96.2],
                    "c2": [1e-9, 1e-9, 1e-9], "k1": [2.498, 2.797, 2.153],
                    "k2": [1.607e-05, 1.912e-05, 6.66e-05], "p2": 1.5, "e1": 0.2, "e2": 1.5}

@@ -41,6 +41,12 @@ from scipy.optimize import minimize
 E2 = 1.5
 P2 = 1.5
 C2 = 1e-9
+# The landing criterion is the Euclidean ball |r| <= LAND_POS_TOL, |v| <= LAND_VEL_TOL (the
+# simulator's); the bounds are per axis, and every axis inside tol/sqrt(3) implies the ball, so
+# the certificate's T_land is the time to that per-axis box (not to |r_i| <= 0.1 m, which
+# allows |r| up to 0.17 m).
+AXIS_POS_TOL = LAND_POS_TOL / math.sqrt(3.0)
+AXIS_VEL_TOL = LAND_VEL_TOL / math.sqrt(3.0)
 GROUND_SLACK = LAND_POS_TOL  # drag density factor is taken on r_z >= -GROUND_SLACK
 
 
@@ -93,17 +99,17 @@ def axis_certificate(bg: Gains, i: int, boxes, m_max: float,
     bound = BS.axis_box_bounds_sat if sat else B.axis_box_bounds
     worst: dict[str, float] = {}
     for b in axis_boxes(boxes, i):
-        d = bound(bg, i, b, pos_tol=LAND_POS_TOL, vel_tol=LAND_VEL_TOL)
+        d = bound(bg, i, b, pos_tol=AXIS_POS_TOL, vel_tol=AXIS_VEL_TOL)
         d["F_b"] = float(m_max * (abs(G_MARS[i]) + d["u_b"]) + drag_force_coef()[i] * d["V_b"]**2)
         for k, x in d.items():
             worst[k] = max(worst.get(k, -np.inf), x)
     if with_global:  # the fixed-time bound from every state (not needed by the optimiser)
         if sat:  # from every state with |v0| up to the envelope's largest (not uniform in v0)
             vmax = max(max(abs(lo[3 + i]), abs(hi[3 + i])) for lo, hi in boxes)
-            worst["T_global"] = BS.global_time_bound_sat(bg, i, vmax, LAND_POS_TOL,
-                                                         LAND_VEL_TOL)
+            worst["T_global"] = BS.global_time_bound_sat(bg, i, vmax, AXIS_POS_TOL,
+                                                         AXIS_VEL_TOL)
         else:
-            worst["T_global"] = B.global_time_bound(bg, i, LAND_POS_TOL, LAND_VEL_TOL)
+            worst["T_global"] = B.global_time_bound(bg, i, AXIS_POS_TOL, AXIS_VEL_TOL)
     return worst
 
 
