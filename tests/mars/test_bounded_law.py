@@ -133,6 +133,7 @@ def test_bounds_hold_on_solve_ivp_corners():
 STATE = st.tuples(*(st.floats(0.0, 1.0) for _ in range(6)))
 
 
+@pytest.mark.slow  # compiles and flies the bounded kernel, ~1.5 min cold in CI
 @settings(max_examples=8)
 @given(st.lists(STATE, min_size=8, max_size=8))
 def test_simulated_landing_within_proven_bound(us):

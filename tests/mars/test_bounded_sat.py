@@ -185,6 +185,7 @@ def test_bounds_hold_for_random_gains_and_boxes(gd, bx, i):
 STATE = st.tuples(*(st.floats(0.0, 1.0) for _ in range(6)))
 
 
+@pytest.mark.slow  # compiles and flies the bounded-sat kernel, ~2 min cold in CI
 @settings(max_examples=6, deadline=None)
 @given(st.lists(STATE, min_size=8, max_size=8))
 def test_simulated_landing_within_proven_bound(us):

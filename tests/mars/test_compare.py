@@ -87,6 +87,7 @@ def _kw(rep: dict, row: dict) -> dict:
             "drag": rep["drag"], "thrust_limit": rep["thrust_max_axis"]}
 
 
+@pytest.mark.slow  # the full comparison: every law by RK4 and dopri5, ~4 min cold in CI
 def test_every_registered_law_has_rows_with_an_outcome(comparison) -> None:
     from lgw.sim.mars.laws import LAWS
 
@@ -127,6 +128,7 @@ def test_every_registered_law_has_rows_with_an_outcome(comparison) -> None:
     assert len(sec.rows) == len(labels) and all(len(r) == len(sec.columns) for r in sec.rows)
 
 
+@pytest.mark.slow  # the full comparison: every law by RK4 and dopri5, ~4 min cold in CI
 def test_each_row_against_independent_runs(comparison) -> None:
     """Every closed-loop row against (a) a fresh RK4 simulate_batch of the same law, gains,
     state, disturbance and limit, without recording (the row's plumbing: equal to 1e-12), and
@@ -168,6 +170,7 @@ def test_each_row_against_independent_runs(comparison) -> None:
             assert abs(d5.t_end[0] - row["t_end"]) <= 0.1, what
 
 
+@pytest.mark.slow  # the full comparison: every law by RK4 and dopri5, ~4 min cold in CI
 def test_after_arrival_column_from_the_recorded_flight(comparison) -> None:
     """The after-arrival peaks are the trajectory function applied to the plotted flight, and
     they are no larger than the whole-flight peaks; '-' (NaN) exactly where no axis band is
@@ -223,6 +226,7 @@ def _lgw(*args: str) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, timeout=300)
 
 
+@pytest.mark.slow  # the full comparison: every law by RK4 and dopri5, ~4 min cold in CI
 def test_report_without_comparison_is_byte_identical(tmp_path) -> None:
     a, b = tmp_path / "a", tmp_path / "b"
     for d in (a, b):
@@ -286,6 +290,7 @@ def test_doc_table_comparison_catches_a_change() -> None:
     assert _same_within_rounding(row, row.replace("landed", "crashed")) is not None
 
 
+@pytest.mark.slow  # the full comparison: every law by RK4 and dopri5, ~4 min cold in CI
 def test_optimal_doc_matches_a_fresh_comparison(comparison) -> None:
     """docs/optimal.md's comparison table and the statements it makes about it, against a
     fresh ``run_comparison`` with the command's defaults (issue 18: they had gone stale)."""
