@@ -8,7 +8,7 @@ Each system's frozen ``VerifyOptions`` calls ``check_run_options`` from its ``__
 from __future__ import annotations
 
 import math
-from collections.abc import Collection, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping
 from typing import Any
 
 from lgw.theory.errors import ParameterError
@@ -34,3 +34,23 @@ def check_run_options(opts: Any, profiles: Mapping[str, Any], claims: Collection
         if isinstance(v, bool) or not (isinstance(v, int | float) and math.isfinite(v)
                                        and v > 0):
             raise ParameterError("scale", v, "a finite factor > 0")
+
+
+def print_claim_details(out: Any, results: Iterable[Any],
+                        extra: Callable[[Any], Iterable[str]] | None = None) -> None:
+    """Under a verify table, per claim: its exclusions with their reasons, why it is not
+    ``holds``, ``extra(result)`` lines (mars: the search), the shrunk witness and the
+    reproduction command, printed literally (``markup=False``: reasons and witnesses may hold
+    brackets that rich would read as markup)."""
+    for r in results:
+        lines = [f"{r.claim}: {n} excluded: {why}" for why, n in r.excluded.items()]
+        if r.why:
+            lines.append(f"{r.claim}: {r.verdict}: {r.why}")
+        if extra is not None:
+            lines.extend(extra(r))
+        if r.witness:
+            lines.append(f"{r.claim}: shrunk witness {r.witness}")
+        if r.reproduction:
+            lines.append(f"{r.claim}: reproduce with\n{r.reproduction}")
+        for line in lines:
+            out.print(line, markup=False)

@@ -14,6 +14,7 @@ from lgw.tuning.eros.options import resolve_gains
 from lgw.tuning.eros.verify import CLAIMS, MIN_CASES, PROFILES
 from lgw.tuning.io import check_out_dir, console, json_document
 from lgw.tuning.options import SEED, Integer, choice, gains_option
+from lgw.tuning.verify_common import print_claim_details
 
 
 def parse_scale(items: tuple[str, ...], claims, name: str = "--scale-bound") -> dict[str, float]:
@@ -110,13 +111,5 @@ def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
     out.print("checked = simulated cases judged (DOP853: of them, carried by the reference "
               "route after RK4 could not); excluded: no integrator carried them or they touched "
               "the body; worst = the largest (observed - one sample)/bound, > 1 violates")
-    for r in results:
-        for why, n in r.excluded.items():
-            out.print(f"{r.claim}: {n} excluded: {why}", markup=False)
-        if r.why:
-            out.print(f"{r.claim}: {r.verdict}: {r.why}", markup=False)
-        if r.witness:
-            out.print(f"{r.claim}: shrunk witness {r.witness}", markup=False)
-        if r.reproduction:
-            out.print(f"{r.claim}: reproduce with\n{r.reproduction}", markup=False)
+    print_claim_details(out, results)
     sys.exit(code)

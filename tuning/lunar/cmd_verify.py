@@ -15,6 +15,7 @@ from pathlib import Path
 import click
 from lgw.tuning.io import check_out_dir, console, json_document
 from lgw.tuning.options import SEED, Integer, Number, choice, gains_option
+from lgw.tuning.verify_common import print_claim_details
 
 PROFILE_NAMES = ("ci", "thorough")
 
@@ -106,15 +107,7 @@ def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
     out.print(t)
     out.print(f"margin = (bound - observed)/bound, < 0 violates; holds needs >= {min_cases} "
               "checked cases; excluded: the margin is undefined for the case (reason below)")
-    for r in results:
-        for why, k in r.excluded.items():
-            out.print(f"{r.claim}: {k} excluded: {why}", markup=False)
-        if r.why:
-            out.print(f"{r.claim}: {r.verdict}: {r.why}", markup=False)
-        if r.witness:
-            out.print(f"{r.claim}: shrunk witness {r.witness}", markup=False)
-        if r.reproduction:
-            out.print(f"{r.claim}: reproduce with\n{r.reproduction}", markup=False)
+    print_claim_details(out, results)
     sys.exit(code)
 
 

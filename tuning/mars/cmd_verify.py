@@ -21,6 +21,7 @@ from lgw.tuning.mars.verify import (
     run_verify,
 )
 from lgw.tuning.options import SEED, Integer, Number, choice, gains_option
+from lgw.tuning.verify_common import print_claim_details
 from rich.console import Console
 from rich.table import Table
 
@@ -125,16 +126,7 @@ def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
     out.print("checked = simulated cases judged (dopri5: of them, carried by the adaptive path "
               "after RK4 could not); excluded: no integrator carried them; search best margin "
               "= least (bound - observed)/bound on the reduced loop, < 0 violates")
-    for r in results:
-        for why, n in r.excluded.items():
-            out.print(f"{r.claim}: {n} excluded: {why}")
-        if r.why:
-            out.print(f"{r.claim}: {r.verdict}: {r.why}")
-        for s in r.search:
-            out.print(f"{r.claim} search (axis {s['axis']}): {s['evaluations']} evaluations, "
-                      f"best margin {s['best_margin']:.4g}, {s['status']}", markup=False)
-        if r.witness:
-            out.print(f"{r.claim}: shrunk witness {r.witness}", markup=False)
-        if r.reproduction:
-            out.print(f"{r.claim}: reproduce with\n{r.reproduction}", markup=False)
+    print_claim_details(out, results, extra=lambda r: [
+        f"{r.claim} search (axis {s['axis']}): {s['evaluations']} evaluations, "
+        f"best margin {s['best_margin']:.4g}, {s['status']}" for s in r.search])
     sys.exit(code)
