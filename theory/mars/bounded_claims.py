@@ -216,18 +216,18 @@ def fly_axis(bg, i: int, r0: float, v0: float, t_max: float = 300.0,
             "u": float(np.max(np.abs(u))), "t_land": t_land}
 
 
-def _ivp_search(n: int = 12, seed: int = 1) -> Step:
-    bg = B.default_bounded()
-    rng = np.random.default_rng(seed)
+def _worst_box_margin(gains, bounds, fixed_points, rng, n: int):
+    """Least relative margin (bound - observed)/bound of the box bounds ``bounds(gains, i,
+    box)`` (R_b, V_b, u_b, T_land) against ``fly_axis`` over each Table III axis box: the
+    box's ``fixed_points(box)`` (corners, r0 = 0) and n random states.  Returns (worst, the
+    point and quantity where it is attained, evaluations)."""
     worst, pt, evals = np.inf, {}, 0
     for i, box in enumerate(TABLE3_AXES):
-        d = B.axis_box_bounds(bg, i, box)
-        corners = [(box.r_lo, box.v_lo), (box.r_hi, box.v_hi), (box.r_lo, box.v_hi),
-                   (box.r_hi, box.v_lo), (min(max(0.0, box.r_lo), box.r_hi), box.v_lo)]
-        pts = corners + [(rng.uniform(box.r_lo, box.r_hi), rng.uniform(box.v_lo, box.v_hi))
-                         for _ in range(n)]
+        d = bounds(gains, i, box)
+        pts = fixed_points(box) + [(rng.uniform(box.r_lo, box.r_hi),
+                                    rng.uniform(box.v_lo, box.v_hi)) for _ in range(n)]
         for r0, v0 in pts:
-            o = fly_axis(bg, i, r0, v0, t_max=1.2 * d["T_land"] + 5)
+            o = fly_axis(gains, i, r0, v0, t_max=1.2 * d["T_land"] + 5)
             evals += 1
             for key, bound in (("r", d["R_b"]), ("v", d["V_b"]), ("u", d["u_b"]),
                                ("t_land", d["T_land"])):
@@ -235,6 +235,16 @@ def _ivp_search(n: int = 12, seed: int = 1) -> Step:
                 if m < worst:
                     worst, pt = m, {"axis": i, "r0": r0, "v0": v0, "quantity": key,
                                     "bound": bound, "observed": o[key]}
+    return worst, pt, evals
+
+
+def _ivp_search(n: int = 12, seed: int = 1) -> Step:
+    bg = B.default_bounded()
+    rng = np.random.default_rng(seed)
+    worst, pt, evals = _worst_box_margin(
+        bg, B.axis_box_bounds, lambda box: [
+            (box.r_lo, box.v_lo), (box.r_hi, box.v_hi), (box.r_lo, box.v_hi),
+            (box.r_hi, box.v_lo), (min(max(0.0, box.r_lo), box.r_hi), box.v_lo)], rng, n)
     return Step("bounds >= the solve_ivp closed loop (default gains, Table III box per axis: "
                 "corners, r0 = 0 and random states)",
                 Search({"box": "seed 000 Table III per axis", "gains": "DEFAULT_BOUNDED"},
@@ -403,22 +413,10 @@ def _sat_ivp_search(n: int = 4, seed: int = 2) -> Step:
     from lgw.theory.mars import bounded_sat as BS
     sg = BS.default_sat()
     rng = np.random.default_rng(seed)
-    worst, pt, evals = np.inf, {}, 0
-    for i, box in enumerate(TABLE3_AXES):
-        d = BS.axis_box_bounds_sat(sg, i, box)
-        pts = [(a, b) for a in (box.r_lo, box.r_hi, min(max(0.0, box.r_lo), box.r_hi))
-               for b in (box.v_lo, box.v_hi)]
-        pts += [(rng.uniform(box.r_lo, box.r_hi), rng.uniform(box.v_lo, box.v_hi))
-                for _ in range(n)]
-        for r0, v0 in pts:
-            o = fly_axis(sg, i, r0, v0, t_max=1.2 * d["T_land"] + 5)
-            evals += 1
-            for key, bound in (("r", d["R_b"]), ("v", d["V_b"]), ("u", d["u_b"]),
-                               ("t_land", d["T_land"])):
-                m = (bound - o[key]) / bound
-                if m < worst:
-                    worst, pt = m, {"axis": i, "r0": r0, "v0": v0, "quantity": key,
-                                    "bound": bound, "observed": o[key]}
+    worst, pt, evals = _worst_box_margin(
+        sg, BS.axis_box_bounds_sat, lambda box: [
+            (a, b) for a in (box.r_lo, box.r_hi, min(max(0.0, box.r_lo), box.r_hi))
+            for b in (box.v_lo, box.v_hi)], rng, n)
     return Step("box bounds >= the solve_ivp closed loop of law_bounded_sat (DEFAULT_SAT, "
                 "Table III per axis: corners, r0 = 0 and random states)",
                 Search({"box": "seed 000 Table III per axis", "gains": "DEFAULT_SAT"},
