@@ -8,7 +8,17 @@ import pytest
 import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
-from lgw.theory.evidence import Cited, Claim, Identity, Search, Step, Unproven, Witness, combine
+from lgw.theory.evidence import (
+    Cited,
+    Claim,
+    FromClaim,
+    Identity,
+    Search,
+    Step,
+    Unproven,
+    Witness,
+    combine,
+)
 from lgw.theory.provers import (
     arb_enclosure,
     identity_at,
@@ -82,9 +92,15 @@ def test_search_is_checked_or_refuted_never_proved():
     s = search_step("x <= 5", lambda pt: 5 - pt["x"], pts, domain={"x": [0, 9]}, method="grid",
                     recheck=lambda pt: 5 - pt["x"], recheck_method="same, exact")
     assert s.status == "refuted" and s.witness["x"] == 9.0
-    # without an independent re-check a negative margin does not refute
+    # without an independent re-check a negative margin does not refute, and it is not
+    # "checked" either: a best margin below the tolerance is unproven
     s = search_step("x <= 5", lambda pt: 5 - pt["x"], pts, domain={"x": [0, 9]}, method="grid")
-    assert s.status == "checked"
+    assert s.status == "unproven"
+    ev = s.evidence
+    assert Step("tol", Search(ev.domain, ev.method, ev.evaluations, -1e-7, ev.best_point,
+                              tolerance=1e-6)).status == "checked"
+    assert Step("tol", Search(ev.domain, ev.method, ev.evaluations, -8.4e-6, ev.best_point,
+                              tolerance=1e-6)).status == "unproven"
     assert run_search(lambda pt: -pt["x"], pts).best_point == {"x": 9.0}
 
 
@@ -98,6 +114,23 @@ def test_cited_and_combine():
     assert cl.verdict == "proved-given" and cl.references == ["Khalil, Lemma 3.4"]
     chk = search_step("s", lambda pt: 1.0, [{"a": 1}], domain={"a": 1}, method="m")
     assert combine([hyp, c, chk]) == "checked"
+
+
+def test_a_claim_used_as_a_lemma_carries_its_verdict_and_a_refuted_one_is_unproven():
+    proved = Claim("a", "(1)", "t", "p", "d", [prove_nonneg(p, "p > 0", strict=True)])
+    gap = Claim("b", "(2)", "t", "p", "d", [Step("gap", Unproven("no proof"))])
+    assert Step("uses a", FromClaim(proved)).status == "proved"
+    assert Step("uses b", FromClaim(gap)).status == "unproven"
+    wrong = Claim("c", "(3)", "t", "p", "d", [search_step(
+        "x <= 5", lambda pt: 5 - pt["x"], [{"x": 9.0}], domain={"x": [0, 9]}, method="grid",
+        recheck=lambda pt: 5 - pt["x"], recheck_method="exact")])
+    assert wrong.verdict == "refuted"
+    lemma = Step("Theorem 1", Cited("paper, Theorem 1", "fixed time",
+                                    (Step("Theorem 1 holds", FromClaim(wrong)),)))
+    assert lemma.status == "unproven"  # citing a refuted result proves nothing
+    fix = Claim("c-fixed", "(3)", "t", "p", "d", [proved.steps[0]], statement="workbench",
+                corrects="c")
+    assert fix.to_dict()["corrects"] == "c" and fix.to_dict()["statement"] == "workbench"
     assert combine([]) == "unproven"
 
 

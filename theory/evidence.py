@@ -15,9 +15,15 @@ the evidence behind it.  The kinds, and the status each can give:
   Search      a falsification run over a stated domain with a stated budget: ``refuted`` only
               with a witness whose negative margin was re-checked by an independent route;
               otherwise ``checked`` (never ``proved``), with the best margin found.
+  Search      (continued) ``checked`` needs the best margin to clear the stated tolerance
+              (``best_margin >= -tolerance``; the tolerance is 0 unless the step states one,
+              e.g. an integrator's error); a best margin below it is ``unproven``.
   Cited       a published lemma (comparison principle, LaSalle-Yoshizawa, ...) with its
               reference, whose hypotheses are themselves steps: ``cited`` when every
               hypothesis is proved or cited; otherwise the weakest hypothesis decides.
+  FromClaim   another claim of the workbench used as a lemma: its verdict carries over
+              (proved -> proved, proved-given -> cited, checked -> checked), and a lemma the
+              workbench refutes or leaves unproven makes the step ``unproven``, never proved.
   Unproven    a named gap: why no prover could decide (always ``unproven``).
 
 Combination (a conclusion needs every step): refuted > unproven > checked > cited > proved,
@@ -223,13 +229,21 @@ class Search(Evidence):
     counter: Witness | None = None
     relative: bool = False  # best_margin relative to the bound
 
+    tolerance: float = 0.0  # the margin a "checked" needs: best_margin >= -tolerance
+
     def __post_init__(self) -> None:
         if self.evaluations < 1:
             raise ValueError("a Search needs at least one evaluation")
+        if not (math.isfinite(self.tolerance) and self.tolerance >= 0):
+            raise ValueError("a Search tolerance must be finite and >= 0")
 
     @property
     def status(self) -> str:
-        return "refuted" if self.counter is not None and self.counter.confirmed else "checked"
+        if self.counter is not None and self.counter.confirmed:
+            return "refuted"
+        m = self.best_margin
+        return "checked" if isinstance(m, int | float) and math.isfinite(m) and \
+            m >= -self.tolerance else "unproven"
 
     @property
     def witness(self) -> Witness | None:
@@ -239,8 +253,12 @@ class Search(Evidence):
         kind = "relative margin" if self.relative else "margin"
         s = (f"{self.method}, {self.evaluations} evaluations over {dict(self.domain)} "
              f"(seed {self.seed}): best {kind} {self.best_margin:.6g}")
+        if self.tolerance:
+            s += f" (tolerance {self.tolerance:.3g})"
         if self.status == "refuted":
             s += f"; counterexample re-checked by {self.counter.recheck_method}"
+        elif self.status == "unproven":
+            s += "; below the tolerance, not re-checked into a counterexample: unproven"
         return s
 
     def to_dict(self) -> dict[str, Any]:
@@ -248,6 +266,7 @@ class Search(Evidence):
                           "method": self.method, "evaluations": self.evaluations,
                           "best_margin": self.best_margin, "relative": self.relative,
                           "best_point": dict(self.best_point), "seed": self.seed,
+                          "tolerance": self.tolerance,
                           "witness": self.counter.to_dict() if self.counter else None})
 
 
@@ -293,7 +312,31 @@ class Unproven(Evidence):
         return {"kind": self.kind, "reason": self.reason}
 
 
-EVIDENCE_KINDS = (Identity, Inequality, Search, Cited, Unproven)
+@dataclass(frozen=True)
+class FromClaim(Evidence):
+    """Another claim of the workbench used as a lemma (``claim``, a ``Claim``): its verdict is
+    this step's status, except that a refuted or unproven lemma gives ``unproven`` (the step
+    rests on something not shown), and proved-given gives ``cited``."""
+
+    kind: ClassVar[str] = "claim"
+    claim: Any  # Claim (defined below)
+
+    _MAP: ClassVar[dict[str, str]] = {"proved": "proved", "proved-given": "cited",
+                                      "checked": "checked", "unproven": "unproven",
+                                      "refuted": "unproven"}
+
+    @property
+    def status(self) -> str:
+        return self._MAP[self.claim.verdict]
+
+    def summary(self) -> str:
+        return f"rests on claim {self.claim.id} ({self.claim.verdict})"
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "claim": self.claim.id, "verdict": self.claim.verdict}
+
+
+EVIDENCE_KINDS = (Identity, Inequality, Search, Cited, Unproven, FromClaim)
 
 
 @dataclass(frozen=True)
@@ -341,6 +384,7 @@ def combine(steps: Iterable[Step]) -> str:
 
 
 SCOPES = ("all-gains", "gain-set", "scenario")
+STATEMENTS = ("paper", "workbench")
 
 
 @dataclass(frozen=True)
@@ -349,7 +393,13 @@ class Claim:
     verdict.  ``scope``: "all-gains" (holds or fails whatever the valid gains), "gain-set"
     (judged for the gain set the report was made for), "scenario" (a statement about the
     paper's simulations).  ``remarks`` are steps of the paper's own argument that fail where
-    the workbench proves the statement another way: reported, not part of the verdict."""
+    the workbench proves the statement another way: reported, not part of the verdict.
+
+    ``statement``: whose statement is judged.  "paper": the paper's statement as printed (the
+    summary counts and the findings page count these).  "workbench": a statement the
+    workbench derives itself; when it corrects a paper statement, ``corrects`` is that paper
+    claim's id, so a printed formula is judged as printed (refuted, with its witness) beside
+    its correction (proved)."""
 
     id: str
     equations: str
@@ -363,12 +413,18 @@ class Claim:
     remarks: tuple[Step, ...] = ()
     paper_expr: sp.Basic | None = None
     derived_expr: sp.Basic | None = None
+    statement: str = "paper"
+    corrects: str | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "steps", tuple(self.steps))
         object.__setattr__(self, "remarks", tuple(self.remarks))
         if self.scope not in SCOPES:
             raise ValueError(f"claim {self.id}: scope must be one of {SCOPES}")
+        if self.statement not in STATEMENTS:
+            raise ValueError(f"claim {self.id}: statement must be one of {STATEMENTS}")
+        if self.corrects is not None and self.statement != "workbench":
+            raise ValueError(f"claim {self.id}: only a workbench statement corrects another")
         for s in self.steps + self.remarks:
             if not isinstance(s, Step):
                 raise TypeError(f"claim {self.id}: steps must be Step objects")
@@ -409,7 +465,8 @@ class Claim:
         return _jsonable({
             "id": self.id, "equations": self.equations, "title": self.title,
             "paper": self.paper, "derived": self.derived, "law": self.law,
-            "scope": self.scope, "verdict": self.verdict, "verdict_text": self.verdict_text(),
+            "scope": self.scope, "statement": self.statement, "corrects": self.corrects,
+            "verdict": self.verdict, "verdict_text": self.verdict_text(),
             "steps": [s.to_dict() for s in self.steps],
             "remarks": [s.to_dict() for s in self.remarks],
             "witness": ce.to_dict() if ce else None, "numbers": dict(self.numbers),
