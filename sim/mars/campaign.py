@@ -16,8 +16,6 @@ SeedSequence(seed).spawn child, so the results are identical whatever the execut
 
 from __future__ import annotations
 
-import csv
-import math
 from pathlib import Path
 from typing import Any
 
@@ -26,6 +24,7 @@ from lgw.sim import executors
 from lgw.sim.mars.batch import BatchResult, simulate_batch
 from lgw.sim.results import OUTCOMES, counts
 from lgw.theory.errors import ParameterError
+from lgw.theory.inputs import read_csv_columns
 from lgw.theory.mars.gains import Gains
 from lgw.theory.mars.parameters import M0, M_DRY, R0, V0
 
@@ -73,60 +72,15 @@ def table1_state() -> States:
 
 def read_states_csv(path: str | Path) -> States:
     """Read explicit initial states: a header with columns rx, ry, rz, vx, vy, vz, m (any order,
-    extra columns ignored), one case per row; SI units.  UTF-8 text (a byte-order mark is
-    accepted); binary files, other encodings, duplicated or missing columns, rows of the wrong
-    length, non-numbers, NaN/inf, m <= 0 and files without data rows are ParameterErrors."""
+    extra columns ignored), one case per row; SI units (``lgw.theory.inputs.read_csv_columns``:
+    regular UTF-8 files only, size and row caps, finite numbers).  m <= 0 is refused."""
     name = "--initial-states"
-    p = Path(path)
-    try:
-        raw = p.read_bytes()
-    except OSError as e:
-        raise ParameterError(name, str(p), f"cannot be read ({e.strerror})") from e
-    if b"\x00" in raw:
-        raise ParameterError(name, str(p), "is a binary file (it contains NUL bytes), not CSV")
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as e:
-        raise ParameterError(name, str(p), f"is not UTF-8 text (byte 0x{raw[e.start]:02x} at "
-                             f"offset {e.start})") from None
-    try:
-        table = [r for r in csv.reader(text.splitlines()) if any(c.strip() for c in r)]
-    except csv.Error as e:
-        raise ParameterError(name, str(p), f"is not valid CSV ({e})") from None
-    if not table:
-        raise ParameterError(name, str(p), f"is empty; needs a header {','.join(CSV_COLUMNS)} "
-                             "and one row per case")
-    header = [h.strip() for h in table[0]]
-    dup = sorted({h for h in header if h in CSV_COLUMNS and header.count(h) > 1})
-    if dup:
-        raise ParameterError(name, str(p), f"has duplicated columns {', '.join(dup)} (which "
-                             "one is meant is ambiguous)")
-    missing = [c for c in CSV_COLUMNS if c not in header]
-    if missing:
-        raise ParameterError(name, str(p), f"needs columns {', '.join(CSV_COLUMNS)}; "
-                             f"missing {', '.join(missing)} (header: {','.join(header)[:200]})")
-    rows = table[1:]
-    if not rows:
-        raise ParameterError(name, str(p), "has no data rows")
-    col = [header.index(c) for c in CSV_COLUMNS]
-    data = np.empty((len(rows), 7))
-    for i, row in enumerate(rows):
-        if len(row) != len(header):
-            raise ParameterError(f"{name} row {i + 2}", len(row), f"must have {len(header)} "
-                                 "fields like the header")
-        for j, c in enumerate(CSV_COLUMNS):
-            cell = row[col[j]].strip()
-            try:
-                data[i, j] = float(cell)
-            except ValueError:
-                raise ParameterError(f"{name} row {i + 2} column {c}", cell[:100],
-                                     "must be a number") from None
-            if not math.isfinite(data[i, j]):
-                raise ParameterError(f"{name} row {i + 2} column {c}", cell[:100],
-                                     "must be finite")
-        if data[i, 6] <= 0:
-            raise ParameterError(f"{name} row {i + 2} column m", data[i, 6],
-                                 "must be > 0 (kg)")
+    cols = read_csv_columns(path, name, CSV_COLUMNS)
+    data = np.column_stack([cols[c] for c in CSV_COLUMNS])
+    bad = np.flatnonzero(data[:, 6] <= 0)
+    if bad.size:
+        raise ParameterError(f"{name} row {bad[0] + 2} column m", data[bad[0], 6],
+                             "must be > 0 (kg)")
     return data[:, :3], data[:, 3:6], data[:, 6]
 
 

@@ -13,12 +13,12 @@ Parsing never evaluates user text: values must already be TOML numbers.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
 from lgw.theory.errors import ParameterError
+from lgw.theory.inputs import load_toml
 
 KEYS = ("alpha", "beta", "p", "q", "k", "lam", "N", "M", "phi", "e_floor")
 _RANGES = {
@@ -94,16 +94,8 @@ def gains_from_dict(data: dict[str, Any]) -> Gains:
 
 
 def load_gains(path: str | Path) -> Gains:
-    p = Path(path)
-    try:
-        text = p.read_text()
-    except OSError as e:
-        raise ParameterError("--gains", str(p), f"cannot be read ({e.strerror})") from e
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as e:
-        raise ParameterError("--gains", str(p), f"is not valid TOML ({e})") from e
-    return gains_from_dict(data)
+    """Read and validate a gains TOML file (``lgw.theory.inputs``)."""
+    return gains_from_dict(load_toml(path, "--gains"))
 
 
 def default_gains() -> Gains:

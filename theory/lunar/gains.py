@@ -17,13 +17,13 @@ evaluates user text: values must already be TOML numbers.
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from lgw.theory.errors import ParameterError
+from lgw.theory.inputs import load_toml
 from lgw.theory.lunar.parameters import ATTITUDE_GAINS, ORBIT_GAINS
 
 LOOPS = ("orbit", "attitude")
@@ -141,11 +141,5 @@ def from_dict(d: dict[str, Any]) -> Gains:
 
 
 def load(path: Path) -> Gains:
-    """Gains from a TOML file with tables [orbit] and [attitude]."""
-    try:
-        data = tomllib.loads(Path(path).read_text())
-    except FileNotFoundError as e:
-        raise ParameterError("--gains", str(path), "file not found") from e
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as e:
-        raise ParameterError("--gains", str(path), f"not valid TOML: {e}") from e
-    return from_dict(data)
+    """Gains from a TOML file with tables [orbit] and [attitude] (``lgw.theory.inputs``)."""
+    return from_dict(load_toml(path, "--gains"))

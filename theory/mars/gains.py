@@ -24,13 +24,13 @@ duplicate keys and integers too large for a double are named errors.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from lgw.theory.errors import ParameterError
+from lgw.theory.inputs import load_toml, parse_toml_bytes
 
 AXIS_GAINS = ("beta1", "beta2", "alpha1", "alpha2")
 EXPONENTS = ("q1", "q2", "g1", "g2")
@@ -191,38 +191,9 @@ def gains_from_dict(data: dict[str, Any]) -> Gains:
 
 
 def load_gains(path: str | Path) -> Gains:
-    """Read and validate a gains TOML file."""
-    p = Path(path)
-    try:
-        raw = p.read_bytes()
-    except OSError as e:
-        raise ParameterError("--gains", str(p), f"cannot be read ({e.strerror})") from e
-    return gains_from_dict(parse_toml_bytes(raw, "--gains", str(p)))
-
-
-def decode_text(raw: bytes, name: str, shown: str) -> str:
-    """UTF-8 text of a user file (a leading byte-order mark dropped); binary or other encodings
-    are a ParameterError naming the option ``name`` and the file ``shown``."""
-    if b"\x00" in raw:
-        raise ParameterError(name, shown, "is a binary file (it contains NUL bytes), not text")
-    try:
-        return raw.decode("utf-8-sig")
-    except UnicodeDecodeError as e:
-        raise ParameterError(name, shown, f"is not UTF-8 text (byte 0x{raw[e.start]:02x} at "
-                             f"offset {e.start})") from None
-
-
-def parse_toml_bytes(raw: bytes, name: str = "--gains", shown: str = "<text>") -> dict[str, Any]:
-    """Parse a TOML document from bytes; every failure (encoding, syntax, duplicate keys,
-    nesting too deep for the parser) is a ParameterError."""
-    text = decode_text(raw, name, shown)
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as e:
-        raise ParameterError(name, shown, f"is not valid TOML ({e})") from None
-    except RecursionError:
-        raise ParameterError(name, shown, "is not valid TOML (arrays or tables nested too "
-                             "deeply)") from None
+    """Read and validate a gains TOML file (``lgw.theory.inputs``: regular files only, size
+    cap, UTF-8, nesting and number ranges)."""
+    return gains_from_dict(load_toml(path, "--gains"))
 
 
 def gains_from_toml_text(text: str) -> Gains:

@@ -17,52 +17,13 @@ STATE_COLUMNS = ("ex", "ey", "ez", "vx", "vy", "vz")  # m, m/s: e(0), e'(0) of e
 
 def read_offsets_csv(path: Path):
     """Initial errors from a CSV with a header ex, ey, ez, vx, vy, vz (m, m/s) and an optional
-    phase (rad, the case's disturbance phase; default 0), any order, one case per row, UTF-8.
-    Missing or duplicated columns, rows of the wrong length, non-numbers, NaN/inf and files
-    without rows are ParameterErrors naming the file, row and column.  Returns (e0 (N, 3),
-    ed0 (N, 3), phase (N,))."""
-    import csv
-    import math
-
+    phase (rad, the case's disturbance phase; default 0), any order, one case per row
+    (``lgw.theory.inputs.read_csv_columns``).  Returns (e0 (N, 3), ed0 (N, 3), phase (N,))."""
     import numpy as np
-    from lgw.theory.errors import ParameterError
+    from lgw.theory.inputs import read_csv_columns
 
-    name = "--initial-states"
-    try:
-        text = Path(path).read_bytes().decode("utf-8-sig")
-    except OSError as e:
-        raise ParameterError(name, str(path), f"cannot be read ({e.strerror})") from e
-    except UnicodeDecodeError:
-        raise ParameterError(name, str(path), "is not UTF-8 text") from None
-    try:
-        table = [r for r in csv.reader(text.splitlines()) if any(c.strip() for c in r)]
-    except csv.Error as e:
-        raise ParameterError(name, str(path), f"is not valid CSV ({e})") from None
-    cols = (*STATE_COLUMNS, "phase")
-    header = [h.strip() for h in table[0]] if table else []
-    missing = [c for c in STATE_COLUMNS if c not in header]
-    dup = sorted({h for h in header if h in cols and header.count(h) > 1})
-    if missing or dup:
-        raise ParameterError(name, str(path), f"needs a header with {', '.join(STATE_COLUMNS)} "
-                             "(and optionally phase) once each; "
-                             + (f"missing {', '.join(missing)}" if missing
-                                else f"duplicated {', '.join(dup)}"))
-    if len(table) < 2:
-        raise ParameterError(name, str(path), "has no data rows")
-    use = [c for c in cols if c in header]
-    data = np.zeros((len(table) - 1, 7))
-    for i, row in enumerate(table[1:]):
-        if len(row) != len(header):
-            raise ParameterError(f"{name} row {i + 2}", len(row),
-                                 f"must have {len(header)} fields like the header")
-        for c in use:
-            cell = row[header.index(c)].strip()
-            try:
-                x = float(cell)
-            except ValueError:
-                raise ParameterError(f"{name} row {i + 2} {c}", cell, "must be a number") \
-                    from None
-            if not math.isfinite(x):
-                raise ParameterError(f"{name} row {i + 2} {c}", cell, "must be finite")
-            data[i, cols.index(c)] = x
-    return data[:, :3], data[:, 3:6], data[:, 6]
+    cols = read_csv_columns(path, "--initial-states", STATE_COLUMNS, ("phase",))
+    n = len(cols["ex"])
+    e0 = np.column_stack([cols[c] for c in STATE_COLUMNS[:3]])
+    ed0 = np.column_stack([cols[c] for c in STATE_COLUMNS[3:]])
+    return e0, ed0, cols.get("phase", np.zeros(n))
