@@ -112,8 +112,8 @@ def check_toml_values(data: Any, name: str, shown: str, where: str = "", depth: 
     elif isinstance(data, int):
         if abs(data) > FLOAT_MAX:
             raise ParameterError(where or name, f"{str(data)[:20]}... ({len(str(data))} "
-                                 "digits)", "must be a number within the float range (|x| < 1.8e308): "
-                                 "too large for a double")
+                                 "digits)", "must be a number within the float range "
+                                 "(|x| < 1.8e308): too large for a double")
     elif isinstance(data, float):
         if not math.isfinite(data):
             raise ParameterError(where or name, data, "must be a finite number")
