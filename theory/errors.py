@@ -24,3 +24,11 @@ class MissingDependency(RuntimeError):
         self.package = package
         super().__init__(f"the Python package {package!r} is missing; it is needed for "
                          f"{needed_for} (reinstall lgw, or: pip install {package})")
+
+
+class NotApplicableError(ParameterError):
+    """A verb asked of a system it cannot apply to; the message says why (exit 2)."""
+
+    def __init__(self, verb: str, system: str, reason: str) -> None:
+        ValueError.__init__(self, f"lgw {verb} {system} does not apply: {reason}")
+        self.name, self.value, self.valid = f"lgw {verb} {system}", system, reason

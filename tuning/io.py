@@ -188,3 +188,224 @@ def console() -> Any:
     if sys.stdout.isatty():
         return Console()
     return Console(width=PIPE_WIDTH, soft_wrap=True)
+
+
+# --- output sets: every file of one run lands together, or none does -------------------------
+
+MARKER = ".lgw-output.json"  # written into every output folder: lgw may replace this folder
+MAX_SWAP_TRIES = 20
+
+
+class Stream:
+    """Content produced piece by piece (flat memory for a million cases): ``write(f)`` writes
+    text into the open file ``f``.  In a JSON document, a ``Stream`` of items (``items``:
+    an iterable of JSON values) is written as an array, one item at a time."""
+
+    def __init__(self, items: Any = None, write: Any = None) -> None:
+        self.items, self.write = items, write
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return False
+
+
+def _inside(child: Path, parent: Path) -> bool:
+    try:
+        child.resolve().relative_to(parent.resolve())
+        return True
+    except (ValueError, OSError):
+        return False
+
+
+def check_output_dir(path: Path | None, name: str, inputs: list[Path] = ()) -> Path | None:
+    """Check an output folder before any work.  It is new (its nearest existing ancestor is a
+    writable folder), or an existing folder that is empty or was written by lgw (it holds
+    ``MARKER``): such a folder is replaced as a whole when the run ends.  Refused: a file or
+    device of that name, a folder holding other files, the current folder or one of its
+    ancestors, and a folder holding one of the run's input files."""
+    if path is None:
+        return None
+    p = Path(path)
+    if p.is_symlink() and not p.exists():
+        raise ParameterError(name, str(p), "is a dangling symbolic link")
+    for inp in inputs:
+        if inp is not None and _inside(Path(inp), p):
+            raise ParameterError(name, str(p), f"holds the input file {inp}; an output folder "
+                                 "is replaced as a whole, so it may not hold an input")
+    if p.exists():
+        if not p.is_dir():
+            raise ParameterError(name, str(p), "must be a folder (this command writes several "
+                                 "files); something that is not a folder has that name")
+        cwd = Path.cwd()
+        if _inside(cwd, p):
+            raise ParameterError(name, str(p), "is the current folder or holds it; give a "
+                                 "subfolder (e.g. out/): the folder is replaced as a whole")
+        entries = [e.name for e in os.scandir(p)] if os.access(p, os.R_OK) else ["?"]
+        if entries and MARKER not in entries:
+            raise ParameterError(name, str(p), "exists and holds files lgw did not write; "
+                                 "give a new or empty folder (lgw replaces its output folder "
+                                 "as a whole)")
+        _writable_dir(name, p.absolute().parent, shown=p)
+        return p
+    anc = p.absolute().parent
+    while not anc.exists():
+        anc = anc.parent
+    if not anc.is_dir():
+        raise ParameterError(name, str(p), f"cannot be created: {anc} is not a folder")
+    _writable_dir(name, anc, shown=p)
+    return p
+
+
+def check_output_file(path: Path | None, name: str, inputs: list[Path] = ()) -> Path | None:
+    """Check an output file before any work: not a folder, not a device, FIFO or other
+    non-regular file, not one of the run's inputs; its folder exists and is writable."""
+    if path is None:
+        return None
+    p = Path(path)
+    if p.is_dir():
+        raise ParameterError(name, str(p), "must be a file path (this command writes one "
+                             "file); it is a folder")
+    if p.exists() or p.is_symlink():
+        import stat as _stat
+
+        try:
+            mode = os.stat(p).st_mode
+        except OSError:
+            raise ParameterError(name, str(p), "is a dangling symbolic link") from None
+        if not _stat.S_ISREG(mode):
+            raise ParameterError(name, str(p), "exists and is not a regular file (a device, "
+                                 "FIFO or socket); lgw replaces regular files only")
+        for inp in inputs:
+            if inp is not None and _same_file(p, Path(inp)):
+                raise ParameterError(name, str(p), f"is the input file {inp}; write the "
+                                     "output elsewhere")
+    parent = p.absolute().parent
+    if not parent.is_dir():
+        raise ParameterError(name, str(p), f"its folder {parent} does not exist")
+    _writable_dir(name, parent, shown=p)
+    return p
+
+
+def _write_content(path: Path, content: Any) -> None:
+    if isinstance(content, Stream):
+        with open(path, "w", encoding="utf-8") as f:
+            content.write(f)
+            f.flush()
+            os.fsync(f.fileno())
+        return
+    data = content.encode("utf-8") if isinstance(content, str) else bytes(content)
+    with open(path, "wb") as f:
+        f.write(data)
+        f.flush()
+        os.fsync(f.fileno())
+
+
+def write_output_set(folder: Path, files: dict[str, Any], command: str,
+                     name: str = "--out") -> list[Path]:
+    """Write ``files`` (name -> text, bytes or ``Stream``) as one set into ``folder``: into a
+    temporary folder beside it first, then renamed into place (an existing lgw folder is
+    swapped out and removed).  A reader, a crash, a full disk or a second run at the same time
+    sees the old set or the new one, never a mix; a failure leaves the old folder untouched."""
+    import shutil
+
+    folder = Path(folder)
+    parent = folder.absolute().parent
+    parent.mkdir(parents=True, exist_ok=True)
+    try:
+        tmp = Path(tempfile.mkdtemp(prefix=f".{folder.name}.lgw-tmp-", dir=parent))
+    except OSError as e:
+        raise ParameterError(name, str(folder), f"cannot be written ({e.strerror})") from e
+    try:
+        for fname, content in files.items():
+            if "/" in fname or fname.startswith("."):
+                raise ValueError(f"output file name {fname!r}")
+            _write_content(tmp / fname, content)
+        _write_content(tmp / MARKER, json.dumps({"lgw_version": lgw_version(),
+                                                 "command": command,
+                                                 "files": sorted(files)}, indent=1) + "\n")
+        os.chmod(tmp, 0o777 & ~_umask())
+        for _ in range(MAX_SWAP_TRIES):
+            try:
+                os.rename(tmp, folder)  # atomic when folder does not exist (or is empty)
+                break
+            except OSError:
+                if not folder.exists():
+                    continue
+            old = Path(tempfile.mkdtemp(prefix=f".{folder.name}.lgw-old-", dir=parent))
+            try:
+                os.rename(folder, old / "set")
+            except FileNotFoundError:  # another run swapped it out first: try again
+                shutil.rmtree(old, ignore_errors=True)
+                continue
+            try:
+                os.rename(tmp, folder)
+            except OSError:  # another run put its set in meanwhile: it wins, ours goes too
+                shutil.rmtree(old, ignore_errors=True)
+                continue
+            shutil.rmtree(old, ignore_errors=True)
+            break
+        else:
+            raise ParameterError(name, str(folder), "could not be replaced (other runs keep "
+                                 "writing it)")
+    except OSError as e:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise ParameterError(name, str(folder), f"cannot be written ({e.strerror}); nothing "
+                             "was changed") from e
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return [folder / f for f in files]
+
+
+def _stream_json(value: Any, out: Any, flag: list[bool]) -> None:
+    if isinstance(value, Stream):
+        out.write("[")
+        for i, item in enumerate(value.items):
+            clean, bad = finite_or_null(item)
+            flag[0] = flag[0] or bad
+            out.write(("," if i else "") + json.dumps(clean, allow_nan=False))
+        out.write("]")
+    elif isinstance(value, dict):
+        out.write("{")
+        for i, (k, v) in enumerate(value.items()):
+            out.write(("," if i else "") + json.dumps(str(k)) + ":")
+            _stream_json(v, out, flag)
+        out.write("}")
+    else:
+        clean, bad = finite_or_null(value)
+        flag[0] = flag[0] or bad
+        out.write(json.dumps(clean, allow_nan=False))
+
+
+def has_stream(value: Any) -> bool:
+    if isinstance(value, Stream):
+        return True
+    if isinstance(value, dict):
+        return any(has_stream(v) for v in value.values())
+    return False
+
+
+def write_json_document(payload: dict[str, Any], out: Any, indent: int | None = 2) -> None:
+    """A command's JSON document into the text file ``out``: ``lgw_version`` first, strict
+    JSON, ``"nonfinite_replaced": true`` last when a non-finite value became null.  A payload
+    holding a ``Stream`` is written compactly, item by item (flat memory)."""
+    if not has_stream(payload):
+        out.write(json_document(payload, indent=indent))
+        out.write("\n")
+        return
+    flag = [False]
+    out.write("{" + json.dumps("lgw_version") + ":" + json.dumps(lgw_version()))
+    for k, v in payload.items():
+        out.write("," + json.dumps(str(k)) + ":")
+        _stream_json(v, out, flag)
+    if flag[0]:
+        out.write(',"nonfinite_replaced":true')
+    out.write("}\n")
+
+
+def json_stream(payload: dict[str, Any], indent: int | None = 2) -> Stream:
+    """The JSON document as file content for an output set."""
+    return Stream(write=lambda f: write_json_document(payload, f, indent))

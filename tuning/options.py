@@ -184,3 +184,54 @@ def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT) -> dict[st
         kind = ident.get("type") if isinstance(ident, dict) else type(ident).__name__
         raise ParameterError("--scheduler", address, what, f"it answered as {kind!r}")
     return ident
+
+
+class PathArg(click.ParamType):
+    """A file or folder path given on the command line (existence and kind are checked by the
+    command before any work: inputs by ``lgw.theory.inputs``, outputs by ``lgw.tuning.io``)."""
+
+    name = "path"
+
+    def __init__(self, kind: str = "file") -> None:
+        self.kind = kind  # "file" | "dir"
+
+    def get_metavar(self, param: click.Parameter, ctx: click.Context | None = None) -> str:
+        return "FILE" if self.kind == "file" else "DIR"
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
+                ) -> Path:
+        if isinstance(value, Path):
+            return value
+        if not isinstance(value, str) or not value.strip() or "\x00" in value:
+            raise ParameterError(_opt_name(param), value, f"must be a {self.kind} path")
+        return Path(value)
+
+
+class ScaleItem(click.ParamType):
+    """``CLAIM=FACTOR``: a claim name and a finite factor > 0 (bound scaling, the checker's
+    self-test), converted to a (name, factor) pair."""
+
+    name = "scale"
+
+    def get_metavar(self, param: click.Parameter, ctx: click.Context | None = None) -> str:
+        return "CLAIM=FACTOR"
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
+                ) -> tuple[str, float]:
+        if isinstance(value, tuple) and len(value) == 2:
+            name, val = value
+        else:
+            name, sep, val = str(value).partition("=")
+            if not sep or not name:
+                raise ParameterError(_opt_name(param), value, "must be CLAIM=FACTOR")
+        try:
+            x = float(val)
+        except (TypeError, ValueError):
+            raise ParameterError(_opt_name(param), value, "FACTOR must be a number") from None
+        if not (math.isfinite(x) and x > 0):
+            raise ParameterError(_opt_name(param), value, "FACTOR must be finite and > 0")
+        return (str(name), x)
+
+
+FILE = PathArg("file")
+DIR = PathArg("dir")

@@ -30,6 +30,15 @@ from lgw.theory.errors import ParameterError
 MISSING = dataclasses.MISSING
 
 
+class _NoProbe:
+    def __repr__(self) -> str:
+        return "NO_PROBE"
+
+
+NO_PROBE = _NoProbe()  # the options test cannot set this option alone (it names a resource)
+DERIVE = None  # probe not declared: derived from the type
+
+
 @dataclass(frozen=True)
 class Opt:
     """How one options field appears on the command line.
@@ -44,7 +53,7 @@ class Opt:
     flag: str
     type: Any = None
     help: str = ""
-    probe: Any = MISSING
+    probe: Any = DERIVE
     execution: bool = False
     secondary: str | None = None
     multiple: bool = False
@@ -55,7 +64,7 @@ class Opt:
 
 
 def option(flag: str, type: Any = None, default: Any = None, help: str = "", *,
-           probe: Any = MISSING, execution: bool = False, secondary: str | None = None,
+           probe: Any = DERIVE, execution: bool = False, secondary: str | None = None,
            multiple: bool = False, is_flag: bool = False, hidden: bool = False,
            metavar: str | None = None, show_default: bool = True) -> Any:
     """A dataclass field that is a command-line option (see ``Opt``)."""
@@ -175,7 +184,7 @@ class _ClickType(click.ParamType):
 
 def probe_value(f: dataclasses.Field, o: Opt) -> Any:
     """A valid value different from the default, for the options test."""
-    if o.probe is not MISSING:
+    if o.probe is not DERIVE:
         return o.probe
     default = f.default if f.default is not MISSING else None
     if o.is_flag or o.secondary is not None:

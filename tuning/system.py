@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
 
-from lgw.theory.errors import ParameterError
+from lgw.theory.errors import NotApplicableError, ParameterError
 
 # exit codes of every verb (documented in tuning/cli.py and docs/cli.md)
 EXIT_OK = 0
@@ -103,6 +103,18 @@ class Verb:
 
 
 @dataclass(frozen=True)
+class Legacy:
+    """A verb still written as its own click command (``module.command``), during the move of
+    every verb onto the shared commands."""
+
+    module: str
+    help: str
+
+    def load(self) -> Any:
+        return importlib.import_module(self.module)
+
+
+@dataclass(frozen=True)
 class NotApplicable:
     """A verb that does not apply to a system, and why (shown in --help, exit 2)."""
 
@@ -121,7 +133,7 @@ class System:
     title: str
     summary: str
     gains: str
-    verbs: Mapping[str, Verb | NotApplicable]
+    verbs: Mapping[str, Verb | Legacy | NotApplicable]
     claims: str = ""
     interop: str = ""
 
@@ -130,7 +142,7 @@ class System:
         if v is None:
             raise ParameterError("VERB", verb, f"one of {', '.join(VERBS)}")
         if isinstance(v, NotApplicable):
-            raise ParameterError(f"lgw {verb} {self.name}", "not applicable", v.reason)
+            raise NotApplicableError(verb, self.name, v.reason)
         return v
 
     def gains_module(self) -> Any:
@@ -171,6 +183,9 @@ def check_consistent(systems: Iterable[System] | None = None) -> list[str]:
             v = s.verbs.get(verb)
             if v is None:
                 problems.append(f"{s.name}: verb {verb} neither implemented nor not-applicable")
+            elif isinstance(v, Legacy):
+                if not hasattr(v.load(), "command"):
+                    problems.append(f"{s.name} {verb}: {v.module} has no command")
             elif isinstance(v, Verb):
                 m = v.load()
                 for attr in ("Options", "plan"):

@@ -1,0 +1,28 @@
+"""Seed 002 (probe landing on 433 Eros, fuzzy fast terminal sliding mode) as a ``System``."""
+
+from lgw.tuning.system import Legacy, NotApplicable, System
+
+_M = "lgw.tuning.eros"
+
+SYSTEM = System(
+    name="eros", seed="002",
+    title="Fuzzy fast terminal sliding mode tracking of a probe landing on asteroid 433 Eros",
+    summary="433 Eros landing (fuzzy FTSMC)",
+    gains=f"{_M}.gainset", claims="lgw.theory.eros.claims:all_claims",
+    interop="lgw.sim.eros.interop",
+    verbs={
+        "bounds": Legacy(f"{_M}.cmd_bounds", "settling (5)/(6) and reaching times, printed "
+                         "vs derived, for a gain set"),
+        "simulate": Legacy(f"{_M}.cmd_simulate", "the six controllers on the 15 s scenario "
+                           "or a Monte Carlo campaign"),
+        "verify": Legacy(f"{_M}.cmd_verify", "Monte Carlo tracking times against the proven "
+                         "per-case reaching + sliding bound"),
+        "report": Legacy(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
+                         "HTML) with every claim's verdict"),
+        "tune": Legacy(f"{_M}.cmd_tune", "alpha, beta, p/q, k for a settling target and a "
+                       "control limit, with a certificate"),
+        "compare": NotApplicable("pending"),
+        "optimal": NotApplicable("pending"),
+        "warmup": NotApplicable("pending"),
+    },
+)

@@ -1,0 +1,28 @@
+"""Seed 001 (lunar descent, adaptive backstepping with saturation and failure) as a
+``System``."""
+
+from lgw.tuning.system import Legacy, NotApplicable, System
+
+_M = "lgw.tuning.lunar"
+
+SYSTEM = System(
+    name="lunar", seed="001",
+    title="Adaptive backstepping for optimal descent with input saturation and failure",
+    summary="lunar descent (adaptive backstepping)",
+    gains=f"{_M}.gainset", claims="lgw.theory.lunar.claims:all_claims",
+    interop="lgw.sim.lunar.interop",
+    verbs={
+        "bounds": Legacy(f"{_M}.cmd_bounds", "the (18) constants beside the true filter L2 "
+                         "gains, and (19)-(21) for a case"),
+        "simulate": Legacy(f"{_M}.cmd_simulate", "fly the Section 5 scenario (or random "
+                           "cases): errors, thrust, torque, d0e, V2"),
+        "verify": Legacy(f"{_M}.cmd_verify", "property campaign: V2 (13), (18), (19), (21a) "
+                         "against measured runs"),
+        "report": Legacy(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
+                         "HTML) with every claim's verdict"),
+        "tune": NotApplicable("pending"),
+        "compare": NotApplicable("pending"),
+        "optimal": NotApplicable("pending"),
+        "warmup": NotApplicable("pending"),
+    },
+)
