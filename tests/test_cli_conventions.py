@@ -17,7 +17,8 @@ import click
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from lgw.tuning.cli import VERBS, cli, main, systems_for
+from lgw.tuning.cli import cli, main
+from lgw.tuning.commands import all_commands
 from lgw.tuning.options import Choice
 
 
@@ -53,16 +54,7 @@ def assert_one_error(r: Run) -> None:
     assert "Traceback" not in r.stderr and "Usage:" not in r.stderr
 
 
-def _commands() -> list[tuple[str, str, click.Command]]:
-    out = []
-    for verb in VERBS:
-        for system in systems_for(verb):
-            mod = importlib.import_module(f"lgw.tuning.{system}.cmd_{verb}")
-            out.append((verb, system, mod.command))
-    return out
-
-
-COMMANDS = _commands()
+COMMANDS = all_commands()
 CHOICE_OPTIONS = [(v, s, p) for v, s, c in COMMANDS for p in c.params
                   if isinstance(p, click.Option) and isinstance(p.type, click.Choice)]
 # commands other engineers own: their options are checked by the lead after the merge
@@ -163,20 +155,22 @@ def test_exit_2_in_a_real_process():
     assert len(p.stderr.strip().splitlines()) == 1
 
 
-def test_console_is_wide_in_a_pipe():
-    """A rich table printed through lgw.tuning.io.console() to a pipe keeps every header."""
-    code = ("from lgw.tuning.io import console\nfrom rich.table import Table\n"
-            "t = Table()\n"
-            "for i in range(12): t.add_column(f'a_long_column_header_{i}')\n"
-            "t.add_row(*[f'cell value number {i}' for i in range(12)])\n"
-            "console().print(t)\n")
+def test_result_tables_never_cut_a_header_or_number_at_80_columns():
+    """A table printed by lgw.tuning.tables.result_table through lgw.tuning.io.console() to a
+    pipe of 80 columns keeps every header and every number whole: folded, or stacked."""
+    code = ("from lgw.tuning.io import console\nfrom lgw.tuning.tables import result_table\n"
+            "cols = [f'a_long_column_header_{i}' for i in range(12)]\n"
+            "rows = [[f'{1234.5678 * (i + 1):.7g}/{i}' for i in range(12)]]\n"
+            "result_table(console(), 'wide', cols, rows)\n"
+            "result_table(console(), 'narrow', ['q', 'x'], [['peak', '5.4/7.25']])\n")
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
                        env={"PATH": "/usr/bin:/bin", "COLUMNS": "80"})
     assert p.returncode == 0, p.stderr
+    assert max(len(line) for line in p.stdout.splitlines()) <= 80
     for i in range(12):
         assert f"a_long_column_header_{i}" in p.stdout
-        assert f"cell value number {i}" in p.stdout
-    assert "…" not in p.stdout
+        assert f"{1234.5678 * (i + 1):.7g}/{i}" in p.stdout
+    assert "5.4/7.25" in p.stdout and "\u2026" not in p.stdout
 
 
 def test_bounds_table_untruncated_in_a_pipe():

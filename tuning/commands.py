@@ -244,3 +244,19 @@ def verb_groups() -> list[VerbGroup]:
 
 def first_line(text: str | None) -> str:
     return _first_line(text)
+
+
+def all_commands(include_legacy: bool = True) -> list[tuple[str, str, click.Command]]:
+    """(verb, system, command) of every applicable verb of every system."""
+    from lgw.tuning.system import all_systems
+
+    out = []
+    for s in all_systems():
+        for verb in VERBS:
+            v = s.verbs.get(verb)
+            if v is None or isinstance(v, NotApplicable):
+                continue
+            if isinstance(v, Legacy) and not include_legacy:
+                continue
+            out.append((verb, s.name, make_command(s, verb)))
+    return out

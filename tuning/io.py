@@ -10,8 +10,9 @@
 * ``strict_json(obj)`` is ``json.dumps(..., allow_nan=False)`` after replacing every non-finite
   float by ``null``; ``json_document`` adds ``lgw_version`` and, when any value was replaced,
   ``"nonfinite_replaced": true`` (documented in docs/json.md).
-* ``console()`` is the rich console of every table: as wide as the content when stdout is not
-  a terminal (a pipe or a CI log), so headers and cells are never truncated to 80 columns.
+* ``console()`` is the rich console of every table: the terminal's width on a TTY, else
+  ``COLUMNS`` or 120 columns; tables fold or stack to fit (``lgw.tuning.tables``), so headers
+  and cells are never truncated.
 """
 
 from __future__ import annotations
@@ -29,7 +30,8 @@ from typing import Any
 import numpy as np
 from lgw.theory.errors import ParameterError
 
-PIPE_WIDTH = 10_000  # columns of a console that is not a terminal: wide enough for any table
+PIPE_WIDTH = 120  # columns of a console that is not a terminal (COLUMNS overrides): tables
+# fold or stack to fit (lgw.tuning.tables), so nothing is ever cut
 
 
 def _writable_dir(name: str, d: Path, shown: Path | None = None) -> None:
@@ -187,7 +189,11 @@ def console() -> Any:
 
     if sys.stdout.isatty():
         return Console()
-    return Console(width=PIPE_WIDTH, soft_wrap=True)
+    try:
+        width = max(40, int(os.environ.get("COLUMNS", PIPE_WIDTH)))
+    except ValueError:
+        width = PIPE_WIDTH
+    return Console(width=width, soft_wrap=False, force_terminal=False, color_system=None)
 
 
 # --- output sets: every file of one run lands together, or none does -------------------------

@@ -147,39 +147,12 @@ def click_params(cls: type[Options]) -> list[click.Parameter]:
         else:
             kw.update(default=default, multiple=o.multiple,
                       show_default=o.show_default and default not in (None, ()))
-            if o.type is not None:
-                kw["type"] = _ClickType(o.type)
+            if o.type is not None:  # the same type object converts again in the options
+                kw["type"] = o.type
             if o.metavar:
                 kw["metavar"] = o.metavar
         out.append(click.Option(decls, **kw))
     return out
-
-
-class _ClickType(click.ParamType):
-    """Wraps an lgw parameter type for click without converting twice: click passes the raw
-    text through; the options object converts and validates it (one place)."""
-
-    def __init__(self, inner: Any) -> None:
-        self.inner = inner
-        self.name = getattr(inner, "name", "value")
-
-    def get_metavar(self, param: click.Parameter, ctx: click.Context | None = None) -> str:
-        gm = getattr(self.inner, "get_metavar", None)
-        try:
-            return gm(param, ctx) if gm else self.name.upper()
-        except TypeError:  # click < 8.2 signature
-            return gm(param)
-
-    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
-                ) -> Any:
-        return value
-
-    def shell_complete(self, ctx, param, incomplete):  # pragma: no cover - shell only
-        return getattr(self.inner, "shell_complete", lambda *a: [])(ctx, param, incomplete)
-
-    @property
-    def choices(self) -> Any:  # --help of a choice lists its values
-        return getattr(self.inner, "choices", None)
 
 
 def probe_value(f: dataclasses.Field, o: Opt) -> Any:

@@ -80,9 +80,7 @@ class Job:
 
     ``run(progress)`` computes and returns an ``Outcome``; ``progress`` is a
     ``lgw.tuning.progress.Progress`` (``progress.stage(text)``, ``progress.advance(n, total)``).
-    ``gains`` is the gain set used (its ``to_dict()`` is the document's ``gains``), or None."""
-
-    gains: Any = None
+    A ``gains`` attribute, when present, is the gain set used (the document's ``gains``)."""
 
     def run(self, progress: Any) -> Outcome:  # pragma: no cover - every job overrides it
         raise NotImplementedError

@@ -53,11 +53,11 @@ def result_table(con: Any, title: str, columns: Sequence[str],
     fits = _natural_width(columns, cells) <= width or \
         sum(_longest_word(columns, cells)) + 3 * len(columns) + 1 <= width
     if not fits:
-        con.print(title, markup=False, highlight=False)
+        con.print(title, markup=False, highlight=False, soft_wrap=True)
         for row in cells:
-            con.print(f"- {columns[0]}: {row[0]}", markup=False, highlight=False)
+            con.print(f"- {columns[0]}: {row[0]}", markup=False, highlight=False, soft_wrap=True)
             for c, v in zip(columns[1:], row[1:], strict=True):
-                con.print(f"    {c}: {v}", markup=False, highlight=False)
+                con.print(f"    {c}: {v}", markup=False, highlight=False, soft_wrap=True)
         return
     t = Table(title=title, title_justify="left")
     mins = _longest_word(columns, cells)

@@ -1,41 +1,61 @@
-"""``lgw bounds eros``: settling and reaching times of seed 002 for a gain set."""
+"""Derived and printed settling times (5), (7), the reaching time and the reaching + sliding
+bound of seed 002 for the scenario's initial error, per axis, for a gain set."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
-import click
-from lgw.theory.eros.report import BOUND_LABELS, axis_bounds, gain_warnings
-from lgw.tuning.eros.options import resolve_gains
-from lgw.tuning.io import console, json_document
-from lgw.tuning.options import Number, gains_option
-from rich.table import Table
+from lgw.tuning import vocabulary as V
+from lgw.tuning.commands import DOCUMENT
+from lgw.tuning.options import Number
+from lgw.tuning.spec import Options, option
+from lgw.tuning.system import Job, Outcome
 
 
-@click.command("eros")
-@gains_option
-@click.option("--dbar", type=Number(0, unit="m/s^2"), default=0.0, show_default=True,
-              help="bound on the unknown disturbance |D_i| (m/s^2); 0: D known as in (14)")
-@click.option("--json", "as_json", is_flag=True, help="print one JSON object, a key per axis")
-def command(gains_path: Path | None, dbar: float, as_json: bool) -> None:
-    """Derived and printed settling times (5), (7), reaching time and the reaching + sliding
-    bound for the scenario's initial error, per axis."""
+@dataclass(frozen=True)
+class Options(Options):
+    gains: Path | None = V.gains()
+    dbar: float = option("--dbar", Number(0, 1e3, unit="m/s^2"), 0.0,
+                         "bound on the unknown disturbance |D_i| (m/s^2); 0: D known as in "
+                         "(14); must be < k", probe=0.5)
+    json: bool = V.json_flag()
+    out: Path | None = V.out_dir("bounds.json (the --json document)")
+
+
+@dataclass(frozen=True)
+class BoundsJob(Job):
+    gains: Any
+    dbar: float
+
+    def run(self, progress: Any) -> Outcome:
+        from lgw.theory.eros.report import axis_bounds, gain_warnings
+
+        b = axis_bounds(self.gains, dbar=self.dbar)
+        warnings = gain_warnings(self.gains)
+        return Outcome({**b, "warnings": warnings},
+                       render=lambda con: _render(con, b, warnings),
+                       files={"bounds.json": DOCUMENT})
+
+
+def _render(con: Any, b: dict[str, Any], warnings: list[str]) -> None:
+    from lgw.theory.eros.report import BOUND_LABELS
+    from lgw.tuning.tables import result_table
+
+    rows = [(f"{label} [{key}]", unit, *(f"{b[a][key]:.6g}" for a in "xyz"))
+            for key, label, unit in BOUND_LABELS]
+    result_table(con, "seed 002 bounds (per axis)", ("bound", "unit", "x", "y", "z"), rows)
+    for w in warnings:
+        con.print(f"warning: {w}", markup=False)
+
+
+def plan(opts: Options, system: Any) -> BoundsJob:
     from lgw.theory.errors import ParameterError
+    from lgw.tuning.eros.gainset import resolve
 
-    g = resolve_gains(gains_path)
-    if not (0.0 <= dbar < g.k):
-        raise ParameterError("--dbar", dbar, f"must lie in [0, k = {g.k}) m/s^2")
-    b = axis_bounds(g, dbar=dbar)
-    if as_json:
-        click.echo(json_document({"command": "bounds eros", "gains": g.to_dict(), **b,
-                                  "warnings": gain_warnings(g)}, indent=2))
-        return
-    t = Table(title="seed 002 bounds (per axis)")
-    for col in ("bound", "unit", "x", "y", "z"):
-        t.add_column(col, justify="right" if col in "xyz" else "left")
-    for key, label, unit in BOUND_LABELS:
-        t.add_row(f"{label} [{key}]", unit, *(f"{b[a][key]:.6g}" for a in "xyz"))
-    con = console()
-    con.print(t)
-    for w in gain_warnings(g):
-        con.print(f"[yellow]warning:[/] {w}")
+    g = resolve(opts.gains)
+    if not opts.dbar < g.k:
+        raise ParameterError("--dbar", opts.dbar, f"must lie in [0, k = {g.k}) m/s^2 (the "
+                             "switching gain must dominate the disturbance, (18))")
+    return BoundsJob(g, opts.dbar)

@@ -1,6 +1,6 @@
 """Seed 002 (probe landing on 433 Eros, fuzzy fast terminal sliding mode) as a ``System``."""
 
-from lgw.tuning.system import Legacy, NotApplicable, System
+from lgw.tuning.system import Legacy, NotApplicable, System, Verb
 
 _M = "lgw.tuning.eros"
 
@@ -11,7 +11,7 @@ SYSTEM = System(
     gains=f"{_M}.gainset", claims="lgw.theory.eros.claims:all_claims",
     interop="lgw.sim.eros.interop",
     verbs={
-        "bounds": Legacy(f"{_M}.cmd_bounds", "settling (5)/(6) and reaching times, printed "
+        "bounds": Verb(f"{_M}.cmd_bounds", "settling (5)/(6) and reaching times, printed "
                          "vs derived, for a gain set"),
         "simulate": Legacy(f"{_M}.cmd_simulate", "the six controllers on the 15 s scenario "
                            "or a Monte Carlo campaign"),

@@ -1,7 +1,7 @@
 """Seed 001 (lunar descent, adaptive backstepping with saturation and failure) as a
 ``System``."""
 
-from lgw.tuning.system import Legacy, NotApplicable, System
+from lgw.tuning.system import Legacy, NotApplicable, System, Verb
 
 _M = "lgw.tuning.lunar"
 
@@ -12,7 +12,7 @@ SYSTEM = System(
     gains=f"{_M}.gainset", claims="lgw.theory.lunar.claims:all_claims",
     interop="lgw.sim.lunar.interop",
     verbs={
-        "bounds": Legacy(f"{_M}.cmd_bounds", "the (18) constants beside the true filter L2 "
+        "bounds": Verb(f"{_M}.cmd_bounds", "the (18) constants beside the true filter L2 "
                          "gains, and (19)-(21) for a case"),
         "simulate": Legacy(f"{_M}.cmd_simulate", "fly the Section 5 scenario (or random "
                            "cases): errors, thrust, torque, d0e, V2"),

@@ -1,6 +1,6 @@
 """Seed 000 (Mars powered descent, fixed-time multiple sliding surfaces) as a ``System``."""
 
-from lgw.tuning.system import Legacy, NotApplicable, System
+from lgw.tuning.system import Legacy, NotApplicable, System, Verb
 
 _M = "lgw.tuning.mars"
 
@@ -11,7 +11,7 @@ SYSTEM = System(
     gains=f"{_M}.gainset", claims="lgw.theory.mars.claims:all_claims",
     interop="lgw.sim.mars.interop",
     verbs={
-        "bounds": Legacy(f"{_M}.cmd_bounds", "every settling-time, neighbourhood and "
+        "bounds": Verb(f"{_M}.cmd_bounds", "every settling-time, neighbourhood and "
                          "landing-time bound for a gain set"),
         "simulate": Legacy(f"{_M}.cmd_simulate", "batched simulation and Monte Carlo "
                            "campaigns of the closed loop"),
