@@ -12,3 +12,7 @@ settings.register_profile("dev", max_examples=30, deadline=None,
 settings.register_profile("thorough", max_examples=1000, deadline=None,
                           suppress_health_check=[HealthCheck.too_slow], print_blob=True)
 settings.load_profile("ci" if os.environ.get("CI", "").lower() == "true" else "dev")
+
+# Progress lines go to stderr, which click's CliRunner mixes into ``result.output``: the tests
+# read documents from stdout, and the progress tests set LGW_PROGRESS themselves.
+os.environ.setdefault("LGW_PROGRESS", "never")

@@ -50,6 +50,7 @@ from lgw.theory.evidence import (
     Unproven,
     Witness,
 )
+from lgw.theory.sections import Figure, Section  # noqa: F401  (re-exported)
 
 
 @dataclass(frozen=True)
@@ -64,33 +65,6 @@ class ReportSpec:
     bounds: dict[str, dict[str, float]]  # column -> key -> value
     references: tuple[str, ...]
     bounds_note: str = ""
-
-
-@dataclass(frozen=True)
-class Figure:
-    """A figure made outside ``theory``: ``file`` is its name beside the report (Markdown and
-    LaTeX link it), ``png`` its bytes (the HTML embeds them as a data URI)."""
-
-    file: str
-    caption: str
-    png: bytes = b""
-
-
-@dataclass(frozen=True)
-class Section:
-    """A section computed outside ``theory`` (e.g. a simulated comparison, figures) for the
-    report: a table (``columns`` may be empty), paragraphs and figures.
-
-    Plain strings and bytes only, so that ``theory`` renders it without importing the layers
-    above.  ``image`` (a file name beside the report) is the older one-figure form; the HTML
-    embeds it only when ``render_html(..., asset_dir=)`` can read it."""
-
-    title: str
-    paragraphs: tuple[str, ...]
-    columns: tuple[str, ...]
-    rows: tuple[tuple[str, ...], ...]
-    image: str | None = None
-    figures: tuple[Figure, ...] = ()
 
 
 def lgw_version() -> str:

@@ -174,7 +174,7 @@ def run(system: System, verb: str, mod: Any, opts: Any) -> int:
         else:
             sets[out_dir.absolute()] = dict(files)
     if plot_dir is not None and outcome.figures:
-        sets.setdefault(plot_dir.absolute(), {}).update({f.name: f.png
+        sets.setdefault(plot_dir.absolute(), {}).update({f.file: f.png
                                                          for f in outcome.figures})
     for folder, files in sets.items():
         flag = "--out" if out_dir is not None and folder == out_dir.absolute() else "--plot"

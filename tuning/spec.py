@@ -138,7 +138,9 @@ class _Named:
 def click_params(cls: type[Options]) -> list[click.Parameter]:
     """The click options of an options class, in field order (the types are the fields')."""
     out: list[click.Parameter] = []
-    for f, o in option_fields(cls):
+    # what is computed first, then where and how it goes (--json, --out, --workers, ...)
+    ordered = sorted(option_fields(cls), key=lambda fo: fo[1].execution)
+    for f, o in ordered:
         default = f.default if f.default is not MISSING else None
         decls = [o.flag if o.secondary is None else f"{o.flag}/{o.secondary}", f.name]
         kw: dict[str, Any] = {"help": o.help, "hidden": o.hidden}

@@ -24,6 +24,7 @@ from functools import cache
 from typing import Any
 
 from lgw.theory.errors import NotApplicableError, ParameterError
+from lgw.theory.sections import Figure  # noqa: F401  (one figure record for every layer)
 
 # exit codes of every verb (documented in tuning/cli.py and docs/cli.md)
 EXIT_OK = 0
@@ -45,15 +46,6 @@ VERBS = {
     "optimal": "Offline fuel-optimal baseline (lossless convexification).",
     "warmup": "Build and cache every compiled kernel of a system in one step.",
 }
-
-
-@dataclass(frozen=True)
-class Figure:
-    """A figure an outcome carries: its file name (``.png``), PNG bytes, caption."""
-
-    name: str
-    png: bytes
-    caption: str = ""
 
 
 @dataclass

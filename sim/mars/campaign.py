@@ -16,6 +16,7 @@ SeedSequence(seed).spawn child, so the results are identical whatever the execut
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -187,10 +188,14 @@ def _num(x: float) -> float | None:
 
 def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]:
     """One JSON-ready record per case (NaN -> null); the first ``n`` cases only if given."""
-    recs = []
+    return list(iter_case_records(res, n))
+
+
+def iter_case_records(res: BatchResult, n: int | None = None) -> Iterator[dict[str, Any]]:
+    """``case_records`` one at a time (a million cases in flat memory)."""
     code, t_out = res.outcomes()
     for i in range(len(res) if n is None else min(n, len(res))):
-        recs.append({
+        yield {
             "case": i, "r0": res.r0[i].tolist(), "v0": res.v0[i].tolist(),
             "m0": float(res.m0[i]), "landed": bool(res.landed[i]),
             "landing_time": _num(res.landing_time[i]),
@@ -212,5 +217,4 @@ def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]
             "eps": res.eps,
             # the case's one outcome (lgw.sim.results.OUTCOMES) and its time, s
             "outcome": OUTCOMES[code[i]], "outcome_time": _num(t_out[i]),
-        })
-    return recs
+        }

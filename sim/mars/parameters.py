@@ -23,6 +23,9 @@ CD_LANDER = 1.2
 PRINTED_DRAG_COEF = 0.699  # seed 000, eq. (12)
 PRINTED_DRAG_DECAY = 0.0009  # 1/m, seed 000, eq. (12)
 DRAG_MODELS = ("physical", "printed", "none")
+# The registered laws (lgw.sim.mars.laws.LAWS, which loads SymPy) by name, for option choices
+# that must answer before SymPy loads; tests/mars/test_sim_laws.py checks the two agree.
+LAW_NAMES = ("corrected", "printed", "super-twisting", "bounded", "bounded-sat")
 
 # --- Integrator defaults (fixed-step RK4 in lgw.sim.mars.batch)
 # --------------------------------------

@@ -225,12 +225,12 @@ def test_seeds_and_numbers_are_checked_with_their_name(tmp_path, args, name):
 def test_unwritable_out_fails_before_any_work(tmp_path, monkeypatch):
     """--out under a file (or anywhere unwritable) used to fail with a traceback after the
     whole campaign, leaving a partial summary.json; now nothing runs."""
-    import lgw.tuning.mars.cmd_simulate as cs
+    import lgw.sim.mars.campaign as campaign
 
     def boom(*a, **k):
         raise AssertionError("the campaign ran before --out was checked")
 
-    monkeypatch.setattr(cs, "run_campaign", boom)
+    monkeypatch.setattr(campaign, "run_campaign", boom)
     blocker = tmp_path / "file"
     blocker.write_text("x")
     for out in (blocker, blocker / "sub", Path("/proc/lgw-out")):

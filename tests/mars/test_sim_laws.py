@@ -201,3 +201,10 @@ def test_replacing_a_law_needs_no_cache_clearing() -> None:
         assert c.equal(a)
     finally:
         LAWS.pop("pd-swap")
+
+
+def test_law_names_for_the_command_line_are_the_registered_laws():
+    from lgw.sim.mars.laws import LAWS
+    from lgw.sim.mars.parameters import LAW_NAMES
+
+    assert tuple(LAWS) == LAW_NAMES

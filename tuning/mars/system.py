@@ -13,7 +13,7 @@ SYSTEM = System(
     verbs={
         "bounds": Verb(f"{_M}.cmd_bounds", "every settling-time, neighbourhood and "
                          "landing-time bound for a gain set"),
-        "simulate": Legacy(f"{_M}.cmd_simulate", "batched simulation and Monte Carlo "
+        "simulate": Verb(f"{_M}.cmd_simulate", "batched simulation and Monte Carlo "
                            "campaigns of the closed loop"),
         "verify": Legacy(f"{_M}.cmd_verify", "property campaign: observed times and "
                          "neighbourhoods against the proven bounds"),
