@@ -166,7 +166,7 @@ def test_simulate_json_is_strict_and_names_the_outcomes(tmp_path):
 
     path = tmp_path / "g.toml"
     path.write_text(gains_to_toml(default_gains().replace(beta=1e300)))
-    r = lgw("simulate", "eros", "--law", "ftsmc-tanh", "--t-final", "0.1", "--gains", str(path),
+    r = lgw("simulate", "eros", "--law", "ftsmc-tanh", "--t-max", "0.1", "--gains", str(path),
             "--json")
     assert r.returncode == 0, r.stderr
 

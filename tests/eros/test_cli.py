@@ -27,10 +27,19 @@ def test_bounds_json_matches_library():
 
 
 def test_simulate_one_variant_json():
-    r = lgw("simulate", "eros", "--law", "ftsmc-tanh", "--t-final", "1", "--json")
+    r = lgw("simulate", "eros", "--law", "ftsmc-tanh", "--t-max", "1", "--json")
     assert r.returncode == 0, r.stderr
-    rows = json.loads(r.stdout)["rows"]
+    doc = json.loads(r.stdout)
+    rows = doc["rows"]
     assert rows[0]["variant"] == "ftsmc-tanh" and rows[0]["nonfinite"] == 0
+    assert doc["lgw_version"] and doc["command"] == "simulate eros" and doc["gains"]["k"] > 0
+
+
+def test_variant_names_for_the_command_line_are_the_registered_variants():
+    from lgw.sim.eros.laws import VARIANTS, variant_name
+    from lgw.tuning.eros.cmd_simulate import VARIANT_NAMES
+
+    assert tuple(variant_name(*v) for v in VARIANTS) == VARIANT_NAMES
 
 
 @pytest.mark.parametrize("args,name", [

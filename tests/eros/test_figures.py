@@ -77,16 +77,15 @@ def test_report_embeds_the_figures(tmp_path, monkeypatch):
 def test_simulate_plot_writes_the_figures(tmp_path):
     """``lgw simulate eros --plot DIR``: the scenario's three figures for one variant, and the
     campaign's times figure too with --cases."""
-    from lgw.tuning.eros.cmd_simulate import command as simulate_command
+    from tests.test_cli_conventions import run_lgw
 
     one, many = tmp_path / "one", tmp_path / "many"
-    r = CliRunner().invoke(simulate_command, ["--law", "fuzzy-tanh", "--t-final", "2",
-                                              "--plot", str(one)])
-    assert r.exit_code == 0, r.output
-    assert sorted(p.name for p in one.iterdir()) == sorted(FILES[:3])
-    r = CliRunner().invoke(simulate_command, ["--cases", "3", "--t-final", "2", "--json",
-                                              "--plot", str(many)])
-    assert r.exit_code == 0, r.output
+    r = run_lgw(["simulate", "eros", "--law", "fuzzy-tanh", "--t-max", "2", "--plot", str(one)])
+    assert r.code == 0, r.stderr
+    assert sorted(p.name for p in one.iterdir() if p.suffix == ".png") == sorted(FILES[:3])
+    r = run_lgw(["simulate", "eros", "--cases", "3", "--t-max", "2", "--json",
+                 "--plot", str(many)])
+    assert r.code == 0, r.stderr
     for name in FILES:
         assert (many / name).read_bytes().startswith(PNG_SIGNATURE), name
-    assert len(json.loads(r.output)["rows"]) == 6  # --json stays one JSON object
+    assert len(json.loads(r.stdout)["rows"]) == 6  # --json stays one JSON object

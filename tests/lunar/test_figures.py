@@ -110,14 +110,14 @@ def test_failure_time_default_is_half_tf(bad):
 def test_simulate_plot_writes_the_figures(tmp_path):
     """``lgw simulate lunar --plot DIR`` on a short run writes the four PNGs; a file given as
     DIR is refused before any work (exit 2, nothing written)."""
-    from lgw.tuning.lunar.cmd_simulate import command as simulate_command
+    from tests.test_cli_conventions import run_lgw
 
     d = tmp_path / "plots"
-    r = CliRunner().invoke(simulate_command, ["--t-end", "6", "--t-fail", "3", "--plot", str(d)])
-    assert r.exit_code == 0, r.output
+    r = run_lgw(["simulate", "lunar", "--t-max", "6", "--t-fail", "3", "--plot", str(d)])
+    assert r.code == 0, r.stderr
     for name in FILES:
         assert (d / name).read_bytes().startswith(PNG_SIGNATURE), name
     f = tmp_path / "a_file"
     f.write_text("x")
-    r = CliRunner().invoke(simulate_command, ["--t-end", "6", "--plot", str(f)])
-    assert r.exit_code == 2 and f.read_text() == "x"
+    r = run_lgw(["simulate", "lunar", "--t-max", "6", "--plot", str(f)])
+    assert r.code == 2 and f.read_text() == "x"

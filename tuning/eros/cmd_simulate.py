@@ -1,137 +1,173 @@
-"""``lgw simulate eros``: the six controllers on the paper's 15 s scenario, or a campaign."""
+"""Fly seed 002's closed loop (sampled-data, zero-order hold): the six controllers on the
+paper's 15 s scenario, a Monte Carlo campaign over the initial-offset envelope, or the states
+of a CSV file; print the Table 2 analogue per variant: reaching and tracking times, IAE (sum
+over the samples and axes of |e_i|), control peak, effort and chattering (total variation of
+u).  Campaign rows give mean / max over the cases that flew to the horizon or tracked; cases
+that touched the body or became non-finite are counted apart, never in a statistic.
+"""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
-import click
-from lgw.tuning.eros.options import resolve_gains
-from lgw.tuning.io import json_document
-from lgw.tuning.options import SEED, Integer, Number, choice, gains_option
-from rich.console import Console
-from rich.table import Table
+import numpy as np
+from lgw.tuning import vocabulary as V
+from lgw.tuning.commands import DOCUMENT
+from lgw.tuning.options import choice
+from lgw.tuning.spec import Options, option
+from lgw.tuning.system import Job, Outcome
 
+VARIANT_NAMES = ("pdsmc-sign", "pdsmc-tanh", "ftsmc-sign", "ftsmc-tanh", "fuzzy-sign",
+                 "fuzzy-tanh")  # lgw.sim.eros.laws.VARIANTS by name (tests check they agree)
 OUTCOME_NOTE = ("one per case, the first that happened: surface_contact (a sample inside the "
                 "shape model), nonfinite (control or state NaN/inf), tracked (|e_i| <= 1 cm on "
-                "every axis to t_final), horizon (none of these by t_final); t_outcome in s")
+                "every axis to the horizon), horizon (none of these by the horizon); "
+                "t_outcome in s")
 COLUMNS = (("t_reach_max", "reach s"), ("t_track_all", "tracked s"), ("iae", "IAE m"),
            ("u_peak", "peak m/s^2"), ("effort", "effort m/s"), ("chatter", "TV(u) m/s^2"))
+COUNTED = ("tracked", "horizon")  # outcomes whose cases enter the statistics
 
 
-@click.command("eros")
-@gains_option
-@click.option("--law", type=choice(("pdsmc-sign", "pdsmc-tanh", "ftsmc-sign", "ftsmc-tanh",
-                                    "fuzzy-sign", "fuzzy-tanh", "all")),
-              default="all", show_default=True,
-              help="pdsmc-sign, pdsmc-tanh, ftsmc-sign, ftsmc-tanh, fuzzy-sign, fuzzy-tanh or all")
-@click.option("--cases", type=Integer(0, 10**6, "cases"), default=0, show_default=True,
-              help="Monte Carlo cases over the initial-offset envelope (0: the paper's scenario)")
-@click.option("--initial-states", "initial_states", default=None,
-              type=click.Path(dir_okay=False, path_type=Path),
-              help="CSV of initial errors, header ex, ey, ez, vx, vy, vz [, phase] (m, m/s, "
-                   "rad; UTF-8), e.g. a witness of lgw verify eros [default: none]")
-@click.option("--seed", type=SEED, default=1, show_default=True,
-              help="random seed (numpy SeedSequence); integer in [0, 2^64 - 1]")
-@click.option("--t-final", type=Number(0, 1e5, lo_open=True, unit="s"), default=15.0,
-              show_default=True, help="simulated time (s)")
-@click.option("--dt", type=Number(0, 10, lo_open=True, unit="s"), default=0.01,
-              show_default=True, help="sampling time of the controller (s)")
-@click.option("--gravity", type=choice(("two-point", "polyhedron", "none")),
-              default="two-point", show_default=True,
-              help="plant gravity: two-point, polyhedron (slow: single cases) or none")
-@click.option("--disturbance", type=choice(("known", "unknown", "none")), default="known",
-              show_default=True,
-              help="known (D in u_eq, (14)), unknown (bounded, not in u_eq) or none")
-@click.option("--reference", type=choice(("exact", "printed")), default="exact",
-              show_default=True,
-              help="cubic coefficients: exact or printed")
-@click.option("--json", "as_json", is_flag=True, help="print the rows as JSON")
-@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
-              default=None, help="write figures (PNG) to DIR: the variants' tracking errors "
-                                 "per axis, control and chattering (case 0); a campaign: also "
-                                 "the reaching and tracked times of every case")
-def command(gains_path: Path | None, law: str, cases: int, initial_states: Path | None,
-            seed: int, t_final: float, dt: float,
-            gravity: str, disturbance: str, reference: str, as_json: bool,
-            plot_dir: Path | None) -> None:
-    """Fly seed 002's closed loop (sampled-data, zero-order hold) and print the Table 2 analogue:
-    per variant the reaching and tracking times, IAE (sum over the samples and axes of |e_i|),
-    control peak, effort and chattering (total variation of u); campaign rows give mean / max."""
-    from dataclasses import replace
+@dataclass(frozen=True)
+class Options(Options):
+    gains: Path | None = V.gains()
+    law: str = option("--law", choice((*VARIANT_NAMES, "all")), "all",
+                      "controller variant, or all six")
+    cases: int | None = V.cases(None, "Monte Carlo cases over the initial-offset envelope "
+                                "[default: the paper's scenario]")
+    initial_states: Path | None = V.initial_states("ex, ey, ez, vx, vy, vz [, phase] (m, m/s, "
+                                                   "rad), e.g. a witness of lgw verify eros")
+    seed: int = V.seed(1, "seed of the Monte Carlo offsets and disturbance phases")
+    t_max: float = V.t_max(15.0, "simulated time", hi=1e5)
+    dt: float = V.dt(0.01, 10.0, "sampling time of the controller (zero-order hold)")
+    gravity: str = option("--gravity", choice(("two-point", "polyhedron", "none")),
+                          "two-point", "plant gravity: two-point, polyhedron (slow: single "
+                          "cases) or none")
+    disturbance: str = option("--disturbance", choice(("known", "unknown", "none")), "known",
+                              "known (D in u_eq, (14)), unknown (bounded, not in u_eq) or none")
+    cubic: str = option("--cubic", choice(("exact", "printed")), "exact",
+                        "reference cubic (8)-(10): the exact coefficients or the printed ones")
+    json: bool = V.json_flag()
+    out: Path | None = V.out_dir("simulate.json (the --json document)")
+    plot: Path | None = V.plot_dir("the variants' tracking errors per axis, control and "
+                                   "chattering (case 0); a campaign: also the reaching and "
+                                   "tracked times of every case")
 
-    import numpy as np
+    def check(self) -> None:
+        super().check()
+        self.refuse_unless(self.initial_states is None, "cases",
+                           "does not apply with --initial-states (the file gives the cases)")
+        self.refuse_unless(self.cases is not None, "seed", "only applies with --cases (the "
+                           "scenario and a states file draw nothing)")
+        if self.dt > self.t_max:
+            from lgw.theory.errors import ParameterError
+
+            raise ParameterError("--dt", self.dt, f"must be <= --t-max = {self.t_max} s (at "
+                                 "least one sample)")
+
+
+def inputs(opts: Options) -> list[Path]:
+    return [p for p in (opts.initial_states,) if p is not None]
+
+
+@dataclass(frozen=True)
+class SimulateJob(Job):
+    gains: Any
+    variants: tuple[tuple[str, str], ...]
+    states: tuple[np.ndarray, np.ndarray, np.ndarray]
+    base: Any  # lgw.sim.eros.batch.SimOptions
+    settings: dict[str, Any]
+    figures_seed: int | None  # None: no figures
+
+    def run(self, progress: Any) -> Outcome:
+        from dataclasses import replace
+
+        from lgw.sim.eros import laws as SL
+        from lgw.sim.eros.batch import OUTCOMES, metrics, simulate
+        from lgw.sim.eros.campaign import summarize
+        from lgw.tuning.stats import finite_stats, outcome_counts
+
+        e0, ed0, ph = self.states
+        rows = []
+        for lw, sw in self.variants:
+            name = SL.variant_name(lw, sw)
+            progress.stage(f"{name}: {len(e0)} case{'s' if len(e0) > 1 else ''}")
+            res = simulate(e0, ed0, self.gains, replace(self.base, law=lw, switch=sw), ph)
+            m = metrics(res)
+            s = summarize(m)
+            counts = outcome_counts(s["outcome"], OUTCOMES)
+            counted = np.isin(s["outcome"], [OUTCOMES.index(o) for o in COUNTED])
+            row: dict[str, Any] = {"variant": name, "cases": len(e0), "outcomes": counts,
+                                   "nonfinite": counts["nonfinite"]}
+            for k, _ in COLUMNS:
+                row[k] = finite_stats(s[k], counted)
+            if len(e0) == 1:
+                row.update(outcome=OUTCOMES[int(s["outcome"][0])],
+                           t_outcome=float(s["t_outcome"][0]),
+                           t_reach_axes=m["t_reach"][0].tolist(),
+                           t_track_axes=m["t_track"][0].tolist(),
+                           e_final=m["e_final"][0].tolist(), ed_final=m["ed_final"][0].tolist())
+            rows.append(row)
+        figures = []
+        if self.figures_seed is not None:
+            progress.stage("figures")
+            from lgw.tuning.eros.figures import run_figures_for
+
+            figures = run_figures_for(self.gains, self.base,
+                                      tuple(SL.variant_name(*v) for v in self.variants),
+                                      e0, ed0, ph, self.figures_seed)
+        doc = {"settings": self.settings, "rows": rows,
+               "notes": {"statistics": "over the cases whose outcome is tracked or horizon; "
+                         "the others are counted in outcomes", "null": "never happened "
+                         "within the horizon (e.g. never tracked)", "outcomes": OUTCOME_NOTE}}
+        return Outcome(doc, render=lambda con: _render(con, rows, self.settings),
+                       files={"simulate.json": DOCUMENT}, figures=figures,
+                       flags=[f"{r['variant']}: {r['nonfinite']} case(s) became non-finite "
+                              "(counted apart)" for r in rows if r["nonfinite"]])
+
+
+def _render(con: Any, rows: list[dict[str, Any]], st: dict[str, Any]) -> None:
+    from lgw.tuning.tables import fmt, result_table
+
+    one = st["cases"] == 1
+    title = ("seed 002 scenario" if st["source"] == "scenario" else
+             f"seed 002, {st['cases']} cases (mean/max over tracked and horizon cases)")
+    table = []
+    for r in rows:
+        cells = [fmt(r[k]["mean"]) if one else f"{fmt(r[k]['mean'])}/{fmt(r[k]['max'])}"
+                 for k, _ in COLUMNS]
+        table.append((r["variant"], *cells))
+    result_table(con, title, ("variant", *(label for _, label in COLUMNS)), table)
+    for r in rows:
+        con.print(f"{r['variant']} outcomes: " + ", ".join(f"{k} {v}" for k, v in
+                                                          r["outcomes"].items()), markup=False)
+
+
+def plan(opts: Options, system: Any) -> SimulateJob:
     from lgw.sim.eros import laws as SL
-    from lgw.sim.eros.batch import OUTCOMES, SimOptions, metrics, outcome_counts, simulate
-    from lgw.sim.eros.campaign import offsets, summarize
+    from lgw.sim.eros.batch import SimOptions
+    from lgw.sim.eros.campaign import offsets
     from lgw.theory.eros import parameters as P
-    from lgw.theory.errors import ParameterError
-    from lgw.tuning.io import check_out_dir
+    from lgw.tuning.eros.gainset import resolve
 
-    check_out_dir(plot_dir, "--plot")  # before any work
-    g = resolve_gains(gains_path)
-    variants = SL.VARIANTS if law == "all" else (SL.parse_variant(law),)
-    if cases < 0:
-        raise ParameterError("--cases", cases, "must be >= 0")
-    base = SimOptions(t_final=t_final, dt=dt, gravity=gravity, disturbance=disturbance,
-                      reference=reference)
-    if initial_states is not None:
-        if cases:
-            raise ParameterError("--cases", cases, "does not apply with --initial-states")
+    g = resolve(opts.gains)
+    variants = SL.VARIANTS if opts.law == "all" else (SL.parse_variant(opts.law),)
+    base = SimOptions(t_final=opts.t_max, dt=opts.dt, gravity=opts.gravity,
+                      disturbance=opts.disturbance, reference=opts.cubic)
+    if opts.initial_states is not None:
         from lgw.tuning.eros.options import read_offsets_csv
 
-        e0, ed0, ph = read_offsets_csv(initial_states)
-    elif cases == 0:
-        e0, ed0, ph = P.SCENARIO_OFFSET[None], P.SCENARIO_VOFFSET[None], np.zeros(1)
+        states, source = read_offsets_csv(opts.initial_states), str(opts.initial_states)
+    elif opts.cases is None:
+        states = (P.SCENARIO_OFFSET[None], P.SCENARIO_VOFFSET[None], np.zeros(1))
+        source = "scenario"
     else:
-        e0, ed0, ph = offsets(cases, seed)
-    rows = []
-    for lw, sw in variants:
-        res = simulate(e0, ed0, g, replace(base, law=lw, switch=sw), ph)
-        m = metrics(res)
-        s = summarize(m)
-        row = {"variant": SL.variant_name(lw, sw), "cases": len(e0),
-               "nonfinite": int(s["nonfinite"].sum()), "outcomes": outcome_counts(s["outcome"])}
-        for k, _ in COLUMNS:
-            row[k] = float(np.mean(s[k]))
-            row[k + "_max"] = float(np.max(s[k]))
-        if len(e0) == 1:
-            row["outcome"] = OUTCOMES[int(s["outcome"][0])]
-            row["t_outcome"] = float(s["t_outcome"][0])
-            row["t_reach_axes"] = m["t_reach"][0].tolist()
-            row["t_track_axes"] = m["t_track"][0].tolist()
-            row["e_final"] = m["e_final"][0].tolist()
-            row["ed_final"] = m["ed_final"][0].tolist()
-        rows.append(row)
-    if plot_dir is not None:
-        from lgw.tuning.eros.figures import plot_run
-
-        plot_run(g, base, tuple(SL.variant_name(*v) for v in variants), e0, ed0, ph, plot_dir,
-                 seed, quiet=as_json)
-    if as_json:
-        # strict JSON (json_document): a time that never happened (inf / NaN, e.g. never
-        # tracked) or an overflowed measure is null, with "nonfinite_replaced": true
-        click.echo(json_document({"options": {"t_final": t_final, "dt": dt, "gravity": gravity,
-                                              "disturbance": disturbance,
-                                              "reference": reference, "cases": cases,
-                                              "seed": seed},
-                                  "rows": rows,
-                                  "notes": {"null": "never happened within t_final (e.g. never "
-                                                    "tracked)",
-                                            "outcomes": OUTCOME_NOTE}}, indent=2))
-        return
-    title = ("seed 002 scenario" if cases == 0 and initial_states is None else
-             f"seed 002, {len(e0)} cases (mean/max)")
-    t = Table(title=title)
-    t.add_column("variant", no_wrap=True)
-    for _, label in COLUMNS:
-        t.add_column(label, justify="right")
-    for r in rows:
-        cells = [f"{r[k]:.4g}" if len(e0) == 1 else f"{r[k]:.4g}/{r[k + '_max']:.4g}"
-                 for k, _ in COLUMNS]
-        t.add_row(r["variant"], *cells)
-    Console().print(t)
-    for r in rows:
-        click.echo(f"{r['variant']} outcomes: " + ", ".join(f"{k} {v}" for k, v in
-                                                            r["outcomes"].items()))
-    if any(r["nonfinite"] for r in rows):
-        click.echo("warning: some cases became non-finite (flagged and frozen)")
+        states, source = offsets(opts.cases, opts.seed), "monte-carlo"
+    settings = {"t_max": opts.t_max, "dt": opts.dt, "gravity": opts.gravity,
+                "disturbance": opts.disturbance, "cubic": opts.cubic,
+                "cases": len(states[0]), "source": source,
+                "seed": opts.seed if opts.cases is not None else None}
+    return SimulateJob(g, tuple(variants), states, base, settings,
+                       opts.seed if opts.plot is not None else None)

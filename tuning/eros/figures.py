@@ -215,9 +215,8 @@ def write(figs: list[Figure], out_dir: Path) -> list[Path]:
     return [save_png(f.png, out_dir / f.file) for f in figs]
 
 
-def plot_run(g: Gains, base: SimOptions, names: tuple[str, ...], e0: np.ndarray,
-             ed0: np.ndarray, phase: np.ndarray, plot_dir: Path, seed: int = 0,
-             quiet: bool = False) -> list[Path]:
+def run_figures_for(g: Gains, base: SimOptions, names: tuple[str, ...], e0: np.ndarray,
+                    ed0: np.ndarray, phase: np.ndarray, seed: int = 0) -> list[Figure]:
     """``lgw simulate eros --plot DIR``: the variants flown by the command, re-flown with
     histories on the same cases and options; tracking, control and chattering of case 0, and
     for a campaign the per-case times."""
@@ -232,12 +231,7 @@ def plot_run(g: Gains, base: SimOptions, names: tuple[str, ...], e0: np.ndarray,
     if n > 1:
         figs.append(campaign_figure({k: summarize(metrics(r)) for k, r in runs.items()}, n,
                                     seed))
-    paths = write(figs, plot_dir)
-    if not quiet:
-        import click
-
-        click.echo("wrote " + ", ".join(str(p) for p in paths))
-    return paths
+    return figs
 
 
 def _case0(r: Result) -> Result:

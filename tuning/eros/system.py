@@ -13,7 +13,7 @@ SYSTEM = System(
     verbs={
         "bounds": Verb(f"{_M}.cmd_bounds", "settling (5)/(6) and reaching times, printed "
                          "vs derived, for a gain set"),
-        "simulate": Legacy(f"{_M}.cmd_simulate", "the six controllers on the 15 s scenario "
+        "simulate": Verb(f"{_M}.cmd_simulate", "the six controllers on the 15 s scenario "
                            "or a Monte Carlo campaign"),
         "verify": Legacy(f"{_M}.cmd_verify", "Monte Carlo tracking times against the proven "
                          "per-case reaching + sliding bound"),

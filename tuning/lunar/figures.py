@@ -235,7 +235,12 @@ def plot_run(res: BatchResult, ctx: Context, plot_dir: Path, quiet: bool = False
 
 def section5_figure(res, path: Path, i: int = 0, ideal=None) -> None:
     """Height error, velocity error, error quaternion, thrust, torque and d0e of case i (and
-    optionally the ideal-pointing run, dashed)."""
+    optionally the ideal-pointing run, dashed), written to ``path``."""
+    save_png(section5_png(res, i, ideal), path)
+
+
+def section5_png(res, i: int = 0, ideal=None) -> bytes:
+    """The overview figure of ``section5_figure`` as PNG bytes."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -268,5 +273,4 @@ def section5_figure(res, path: Path, i: int = 0, ideal=None) -> None:
         a.set_xlabel("t [s]")
     fig.suptitle("seed 001 Section 5 case (lgw)")
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
-    plt.close(fig)
+    return png_bytes(fig, dpi=90)

@@ -14,7 +14,7 @@ SYSTEM = System(
     verbs={
         "bounds": Verb(f"{_M}.cmd_bounds", "the (18) constants beside the true filter L2 "
                          "gains, and (19)-(21) for a case"),
-        "simulate": Legacy(f"{_M}.cmd_simulate", "fly the Section 5 scenario (or random "
+        "simulate": Verb(f"{_M}.cmd_simulate", "fly the Section 5 scenario (or random "
                            "cases): errors, thrust, torque, d0e, V2"),
         "verify": Legacy(f"{_M}.cmd_verify", "property campaign: V2 (13), (18), (19), (21a) "
                          "against measured runs"),
