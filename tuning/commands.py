@@ -111,8 +111,9 @@ def translate_warning(w: warnings.WarningMessage) -> str:
     src = Path(w.filename).parts
     lib = next((p for p in ("scipy", "numpy", "numba", "cvxpy", "sympy", "control", "dask",
                             "distributed", "matplotlib", "hypothesis") if p in src), "")
-    known = (("lsoda", "the reference integrator (scipy LSODA) reported convergence trouble; "
-              "its cases are re-checked or flagged in the results"),
+    known = (("lsoda", "scipy's LSODA (the tight reference integrator) reported repeated "
+              "convergence failures; it shrinks its step and retries, and a case it cannot "
+              "carry is reported as failed by its own status"),
              ("overflow", "a computation overflowed to inf; the affected cases are counted "
               "apart as non-finite"),
              ("invalid value", "a computation produced NaN; the affected cases are counted "
@@ -142,8 +143,12 @@ def run(system: System, verb: str, mod: Any, opts: Any) -> int:
             outcome: Outcome = job.run(progress)
     finally:
         progress.close()
-    notes = list(dict.fromkeys(translate_warning(w) for w in caught
-                               if not issubclass(w.category, DeprecationWarning)))
+    seen: dict[str, int] = {}
+    for w in caught:
+        if not issubclass(w.category, DeprecationWarning):
+            line = translate_warning(w)
+            seen[line] = seen.get(line, 0) + 1
+    notes = [line + (f" [{n} times]" if n > 1 else "") for line, n in seen.items()]
     head: dict[str, Any] = {"command": command}
     gains = getattr(job, "gains", None)
     if gains is not None:

@@ -145,7 +145,8 @@ def click_params(cls: type[Options]) -> list[click.Parameter]:
         decls = [o.flag if o.secondary is None else f"{o.flag}/{o.secondary}", f.name]
         kw: dict[str, Any] = {"help": o.help, "hidden": o.hidden}
         if o.is_flag or o.secondary is not None:
-            kw.update(is_flag=True, default=bool(default), show_default=o.secondary is not None)
+            kw.update(is_flag=True, default=default if o.secondary is not None else bool(default),
+                      show_default=o.secondary is not None and default is not None)
         else:
             kw.update(default=default, multiple=o.multiple,
                       show_default=o.show_default and default not in (None, ()))

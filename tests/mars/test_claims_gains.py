@@ -94,7 +94,7 @@ def test_report_json_and_claims_json(tmp_path):
     assert c["steps"][0]["evidence"]["kind"] == "inequality"
     assert c["steps"][0]["evidence"]["box"]
     assert by["theorem1"]["witness"]["point"]["x(0) = x*"] == pytest.approx(0.5248885986564)
-    res2 = runner.invoke(cli, ["report", "mars", "--gains", str(gfile), "--no-compare",
+    res2 = runner.invoke(cli, ["report", "mars", "--gains", str(gfile), "--no-sim",
                                "--out", str(tmp_path / "out")], catch_exceptions=False)
     assert res2.exit_code == 0
     assert (tmp_path / "out" / "claims.json").read_text() == res.output

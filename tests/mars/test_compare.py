@@ -230,7 +230,7 @@ def _lgw(*args: str) -> subprocess.CompletedProcess:
 def test_report_without_comparison_is_byte_identical(tmp_path) -> None:
     a, b = tmp_path / "a", tmp_path / "b"
     for d in (a, b):
-        p = _lgw("report", "mars", "--no-compare", "--out", str(d))
+        p = _lgw("report", "mars", "--no-sim", "--out", str(d))
         assert p.returncode == 0, p.stderr
     for name in ("report.md", "report.tex", "report.html"):
         assert (a / name).read_bytes() == (b / name).read_bytes()

@@ -138,7 +138,7 @@ def test_simulate_plot_writes_the_figures(tmp_path) -> None:
 def test_report_with_figures_is_self_contained(tmp_path) -> None:
     from tests.test_report_html import check_html
 
-    res = CliRunner().invoke(cli, ["report", "mars", "--no-compare", "--figures", "--out",
+    res = CliRunner().invoke(cli, ["report", "mars", "--no-sim", "--figures", "--out",
                                    str(tmp_path)], catch_exceptions=False)
     assert res.exit_code == 0, res.output
     text = (tmp_path / "report.html").read_text()

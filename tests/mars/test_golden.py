@@ -33,7 +33,7 @@ def test_bounds_json_same_bytes():
 
 def test_report_same_bytes(tmp_path):
     """``lgw report mars --no-compare --out DIR`` (golden: the same command at issue 13)."""
-    _run("report", "mars", "--no-compare", "--out", str(tmp_path))
+    _run("report", "mars", "--no-sim", "--out", str(tmp_path))
     for name in ("report.md", "report.tex", "report.html", "claims.json"):
         new = (tmp_path / name).read_text()
         golden = "report_nocompare." + (name.split(".")[1] if name.startswith("report")

@@ -19,7 +19,7 @@ SYSTEM = System(
                          "neighbourhoods against the proven bounds"),
         "tune": Legacy(f"{_M}.cmd_tune", "gain design for a landing time and a thrust "
                        "limit, with a certificate"),
-        "report": Legacy(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
+        "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
         "compare": Legacy(f"{_M}.cmd_compare", "the paper's Part 1 comparison on Table I "
                           "(table, JSON, figure)"),
