@@ -12,13 +12,16 @@ import numpy as np
 from click.testing import CliRunner
 from lgw.sim.eros.batch import SimOptions
 from lgw.sim.eros.campaign import monte_carlo, scenario
+from lgw.tuning.commands import make_command
 from lgw.tuning.eros import figures as F
-from lgw.tuning.eros.cmd_report import command as report_command
 from lgw.tuning.eros.options import resolve_gains
+from lgw.tuning.system import get_system
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 FILES = ("eros_tracking.png", "eros_control.png", "eros_chatter.png", "eros_mc_times.png")
 SHORT = SimOptions(t_final=3.0)  # s: the variants' first seconds (reaching, first chattering)
+
+report_command = make_command(get_system("eros"), "report")
 
 
 def _decode(png: bytes) -> np.ndarray:

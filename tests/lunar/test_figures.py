@@ -15,13 +15,16 @@ from lgw.sim.lunar import scenario as S
 from lgw.sim.lunar.batch import rk4_batch
 from lgw.sim.lunar.closed_loop import RunOptions
 from lgw.theory.lunar import parameters as P
+from lgw.tuning.commands import make_command
 from lgw.tuning.lunar import figures as F
 from lgw.tuning.lunar import report_sections as RS
-from lgw.tuning.lunar.cmd_report import command as report_command
+from lgw.tuning.system import get_system
 
 T_END, T_FAIL = 20.0, 8.0  # s
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 FILES = ("lunar_tracking.png", "lunar_thrust.png", "lunar_d0e.png", "lunar_lyapunov.png")
+
+report_command = make_command(get_system("lunar"), "report")
 
 
 def _short(opts: RunOptions | None) -> RunOptions:

@@ -1,14 +1,17 @@
-"""``lgw report lunar --no-scenario`` writes the three formats with every theory claim's verdict
+"""``lgw report lunar --no-sim`` writes the three formats with every theory claim's verdict
 and the coverage table."""
 
 from click.testing import CliRunner
 from lgw.theory.lunar.claims import theory_claims
 from lgw.theory.lunar.coverage import COVERAGE
-from lgw.tuning.lunar.cmd_report import command
+from lgw.tuning.commands import make_command
+from lgw.tuning.system import get_system
+
+command = make_command(get_system("lunar"), "report")
 
 
 def test_report_without_scenario(tmp_path):
-    r = CliRunner().invoke(command, ["--out", str(tmp_path), "--no-scenario"])
+    r = CliRunner().invoke(command, ["--out", str(tmp_path), "--no-sim"])
     assert r.exit_code == 0, r.output
     md = (tmp_path / "report.md").read_text()
     for c in theory_claims():

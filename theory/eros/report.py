@@ -73,14 +73,19 @@ def report_spec(g: Gains, bounds: dict[str, dict[str, float]]) -> ReportSpec:
                       BOUND_LABELS, ("x", "y", "z"), bounds, REFERENCES, note)
 
 
+def coverage_rows() -> list[R.CoverageRow]:
+    """The coverage table of ``lgw.theory.eros.coverage`` as the shared renderer's rows."""
+    row = R.CoverageRow
+    return [row(item, what, ids) if ids else
+            row(item, what, (), note.removeprefix("not checkable, because "))
+            for item, what, ids, note in COVERAGE]
+
+
 def render_documents(claims: Sequence[Claim], spec: ReportSpec,
                      sections: Sequence[Section] = ()) -> dict[str, str]:
     """report.md / .tex / .html and claims.json (``lgw.theory.report.claims_json``, as for
     every system), with the coverage table of ``lgw.theory.eros.coverage``."""
-    row = R.CoverageRow
-    cov = [row(item, what, ids) if ids else
-           row(item, what, (), note.removeprefix("not checkable, because "))
-           for item, what, ids, note in COVERAGE]
+    cov = coverage_rows()
     fns = (("report.md", R.render_markdown), ("report.tex", R.render_latex),
            ("report.html", R.render_html))
     docs = {n: f(list(claims), spec, sections, coverage=cov) for n, f in fns}

@@ -17,7 +17,7 @@ SYSTEM = System(
                            "or a Monte Carlo campaign"),
         "verify": Legacy(f"{_M}.cmd_verify", "Monte Carlo tracking times against the proven "
                          "per-case reaching + sliding bound"),
-        "report": Legacy(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
+        "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
         "tune": Legacy(f"{_M}.cmd_tune", "alpha, beta, p/q, k for a settling target and a "
                        "control limit, with a certificate"),

@@ -1,58 +1,55 @@
-"""``lgw report lunar``: the derivation report of seed 001 (Markdown, LaTeX, HTML)."""
+"""Derive and check every claim of seed 001 for a gain set and write the report (--out:
+Markdown, LaTeX, HTML, claims.json and the figures) and/or print the claims as JSON (--json).
+"""
 
 from __future__ import annotations
 
-from pathlib import Path
+from dataclasses import dataclass
+from typing import Any
 
-import click
-from lgw.tuning.io import atomic_write_text, check_out_dir, make_out_dir
-from lgw.tuning.lunar.options import resolve_gains
-from lgw.tuning.options import gains_option
+from lgw.tuning import vocabulary as V
+from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts
 
 
-@click.command("lunar")
-@gains_option
-@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
-              required=True, help="directory to write report.md, report.tex, report.html")
-@click.option("--scenario/--no-scenario", "with_scenario", default=True, show_default=True,
-              help="fly the Section 5 case (coupled and ideal pointing, ~2-4 min) for the "
-                   "scenario claims, the measured L2 norms and the figures (tracking errors, "
-                   "thrust around the failure, d0e against ||d||, V2 and Vlambda), embedded "
-                   "in report.html and written beside the report")
-def command(gains_path: Path | None, out_dir: Path, with_scenario: bool) -> None:
-    """Derive and check every claim of seed 001 and write the report."""
-    check_out_dir(out_dir)  # before any work
-    g = resolve_gains(gains_path)  # validated before anything is written
+@dataclass(frozen=True)
+class Options(ReportOptions):
+    sim: bool = V.sim_toggle(True, "the Section 5 case (coupled and ideal pointing, ~2-4 min) "
+                             "for the scenario claims, the measured L2 norms and the figures "
+                             "(tracking errors, thrust around the failure, d0e against ||d||, "
+                             "V2 and Vlambda)")
+
+
+@dataclass(frozen=True)
+class Inputs:
+    gains: Any
+    scenario: bool
+
+
+def parts(inp: Inputs, progress: Any) -> ReportParts:
     from lgw.theory.lunar.claims import all_claims
     from lgw.theory.lunar.report import coverage_rows, report_spec
-    from lgw.theory.report import claims_json, render_html, render_latex, render_markdown
-    from lgw.tuning.lunar.figures import write
     from lgw.tuning.lunar.report_sections import bounds_table, reference_section, run_scenario
 
-    sections, scenario, figs = [reference_section()], [], ()
-    measured = None
-    if with_scenario:
+    g = inp.gains
+    progress.stage("the reference trajectory (3)-(4)")
+    sections, scenario, measured = [reference_section()], [], None
+    if inp.scenario:
+        progress.stage("the Section 5 case, coupled and ideal pointing")
         scenario, sec, measured = run_scenario()
         sections.append(sec)
-        figs = sec.figures  # embedded in report.html, written beside the report
     sections.append(_no_tuner_section(g))
+    progress.stage("deriving and judging every claim of seed 001")
     claims = all_claims(scenario)
-    cov = coverage_rows()
     bounds, note = bounds_table(g, measured)
-    spec = report_spec(g, bounds, note)
-    docs = {"report.md": render_markdown(claims, spec, sections, coverage=cov),
-            "report.tex": render_latex(claims, spec, sections, coverage=cov),
-            "report.html": render_html(claims, spec, sections, coverage=cov),
-            "claims.json": claims_json(claims)}
-    make_out_dir(out_dir)
-    for name, text in docs.items():
-        atomic_write_text(out_dir / name, text)
-    written = [str(p) for p in write(list(figs), out_dir)]
-    counts: dict[str, int] = {}
-    for c in claims:
-        counts[c.verdict] = counts.get(c.verdict, 0) + 1
-    click.echo(f"wrote {', '.join([str(out_dir / n) for n in docs] + written)}")
-    click.echo("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
+    return ReportParts(claims, report_spec(g, bounds, note), sections, coverage_rows())
+
+
+def plan(opts: Options, system: Any) -> ReportJob:
+    from lgw.tuning.lunar.gainset import resolve
+
+    g = resolve(opts.gains)  # validated before anything is written
+    return ReportJob("lgw.tuning.lunar.cmd_report:parts", Inputs(g, opts.sim),
+                     opts.out is not None)
 
 
 def _no_tuner_section(g):

@@ -18,7 +18,7 @@ SYSTEM = System(
                            "cases): errors, thrust, torque, d0e, V2"),
         "verify": Legacy(f"{_M}.cmd_verify", "property campaign: V2 (13), (18), (19), (21a) "
                          "against measured runs"),
-        "report": Legacy(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
+        "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
         "tune": NotApplicable("pending"),
         "compare": NotApplicable("pending"),
