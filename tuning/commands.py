@@ -161,12 +161,15 @@ def run(system: System, verb: str, mod: Any, opts: Any) -> int:
     plot_dir = outputs.get("--plot")
     written: list[Path] = []
     sets: dict[Path, dict[str, Any]] = {}
-    if out_dir is not None:
+    single = getattr(_field_type(opts, "--out"), "kind", "dir") == "file"
+    for line in outcome.stderr:
+        click.echo(line, err=True)
+    if out_dir is not None and (outcome.files or not single):
         files = {n: (json_stream(doc) if c is DOCUMENT else c)
                  for n, c in outcome.files.items()}
         if not files:  # a verb with nothing else to write writes its document
             files = {f"{verb}.json": json_stream(doc)}
-        if getattr(_field_type(opts, "--out"), "kind", "dir") == "file":
+        if single:
             from lgw.tuning.io import atomic_writer
 
             (name, content), = files.items()

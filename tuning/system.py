@@ -57,7 +57,8 @@ class Outcome:
     ``render(console)``: the terminal output (tables and lines).  ``files``: name -> text,
     bytes or a ``Stream`` writer, written as one atomic set into ``--out``.  ``figures``:
     written into ``--plot`` (or beside the files).  ``exit_code``: 0, or 1/3/4 as documented.
-    ``flags``: warnings the command prints after the output (unconverged numbers, ...)."""
+    ``flags``: warnings the command prints after the output (unconverged numbers, ...).
+    ``stderr``: lines for stderr whatever the output mode (why a target is infeasible, ...)."""
 
     document: dict[str, Any]
     render: Callable[[Any], None] | None = None
@@ -65,6 +66,7 @@ class Outcome:
     figures: list[Figure] = field(default_factory=list)
     exit_code: int = EXIT_OK
     flags: list[str] = field(default_factory=list)
+    stderr: list[str] = field(default_factory=list)
 
 
 class Job:

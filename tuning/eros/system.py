@@ -19,7 +19,7 @@ SYSTEM = System(
                          "per-case reaching + sliding bound"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
-        "tune": Legacy(f"{_M}.cmd_tune", "alpha, beta, p/q, k for a settling target and a "
+        "tune": Verb(f"{_M}.cmd_tune", "alpha, beta, p/q, k for a settling target and a "
                        "control limit, with a certificate"),
         "compare": NotApplicable("pending"),
         "optimal": NotApplicable("pending"),

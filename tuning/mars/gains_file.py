@@ -190,8 +190,23 @@ def load_tuned(path: str | Path, name: str = "--tuned") -> Gains:
     return check_certificate(load_gains(path), str(path), name)
 
 
+def gains_file_text(gains: Gains, cert: dict[str, Any], header: str = "") -> str:
+    """The tuned file: [gains], [disturbance] and [certificate]."""
+    text = gains_to_toml(gains, header=header).rstrip("\n") + "\n\n"
+    return text + "\n".join(toml_tables("certificate", cert)).rstrip("\n") + "\n"
+
+
+def bounded_gains_file_text(bg: Any, cert: dict[str, Any], header: str) -> str:
+    """A bounded-law tuned file: [gains] (seed 000's table, required by the loader, unused by
+    the bounded laws), [bounded] (or [bounded-sat]) and [certificate]."""
+    from lgw.theory.mars.gains import default_gains
+    from lgw.tuning.mars.design_bounded import _plain, _table, law_of
+
+    text = gains_to_toml(default_gains(), header=header).rstrip("\n") + "\n\n"
+    text += "\n".join(toml_tables(_table(law_of(bg)), bg.to_dict())).rstrip("\n") + "\n\n"
+    return text + "\n".join(toml_tables("certificate", _plain(cert))).rstrip("\n") + "\n"
+
+
 def write_gains(path: str | Path, gains: Gains, cert: dict[str, Any], header: str = "") -> None:
     """Write [gains], [disturbance] and [certificate] (atomically: temp file, then rename)."""
-    text = gains_to_toml(gains, header=header).rstrip("\n") + "\n\n"
-    text += "\n".join(toml_tables("certificate", cert)).rstrip("\n") + "\n"
-    atomic_write_text(Path(path), text)
+    atomic_write_text(Path(path), gains_file_text(gains, cert, header))

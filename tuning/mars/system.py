@@ -17,7 +17,7 @@ SYSTEM = System(
                            "campaigns of the closed loop"),
         "verify": Legacy(f"{_M}.cmd_verify", "property campaign: observed times and "
                          "neighbourhoods against the proven bounds"),
-        "tune": Legacy(f"{_M}.cmd_tune", "gain design for a landing time and a thrust "
+        "tune": Verb(f"{_M}.cmd_tune", "gain design for a landing time and a thrust "
                        "limit, with a certificate"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
