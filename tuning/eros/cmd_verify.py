@@ -15,7 +15,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
-from lgw.tuning.verifying import Claim, Var, VerifyOptions, claim_option, plan, witness_option
+from lgw.tuning.verifying import (
+    Claim,
+    Var,
+    VerifyOptions,
+    claim_option,
+    plan,
+    scale_option,
+    witness_option,
+)
 
 TOL = "one sample dt = 0.01 s (an event between samples is seen at the next)"
 REACH = "first sample with |s_i| <= 1e-3 m/s or a sign change of s_i"
@@ -54,6 +62,7 @@ class Options(VerifyOptions):
     PROFILES: ClassVar = {"ci": 8, "thorough": 60}
 
     claim: tuple = claim_option(CLAIMS)
+    scale: tuple = scale_option(CLAIMS)
     witness: str | None = witness_option(
         VARIABLES, (), "ex=5.0,ey=-3.0,ez=1.0,vx=0.1,vy=0.0,vz=-0.2,phase=1.0")
 

@@ -24,6 +24,7 @@ from lgw.tuning.verifying import (
     VerifyOptions,
     claim_option,
     plan,
+    scale_option,
     witness_option,
 )
 
@@ -70,6 +71,7 @@ class Options(VerifyOptions):
     SETTINGS: ClassVar = ("dt", "eps")
 
     claim: tuple = claim_option(CLAIMS)
+    scale: tuple = scale_option(CLAIMS)
     witness: str | None = witness_option(
         VARIABLES, EXTRAS, "rx=-500.0,ry=1000.0,rz=1200.0,vx=10.0,vy=-50.0,vz=-40.0")
     dt: float = V.dt(0.05, 1.0, "RK4 step (the re-check flies at dt/2)")

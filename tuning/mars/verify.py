@@ -431,9 +431,11 @@ def _fix(pr: Problem, values: Mapping[str, float]) -> Problem:
                    fixed={**pr.fixed, **values})
 
 
-def claim_problems(claim: str, g: Gains, axis: int, scale: float = 1.0) -> list[Problem]:
+def claim_problems(claim: str, g: Gains, axis: int, scale: float = 1.0,
+                   cap: float = math.inf) -> list[Problem]:
     """The search problems of a claim for axis ``axis`` of the gain set on the whole domain
-    (gains fixed; the initial surfaces free).  ``scale`` multiplies the claim's bound."""
+    (gains fixed; the initial surfaces free).  ``scale`` multiplies the claim's bound, ``cap``
+    (a certificate's promise) bounds it."""
     vals: dict[str, float] = dict(g.axis(axis))
     if g.disturbance is not None:
         d = g.disturbance
@@ -443,12 +445,13 @@ def claim_problems(claim: str, g: Gains, axis: int, scale: float = 1.0) -> list[
     elif claim == "T2-26":
         prs = [S._reaching_problem("T2*", "T2_exact", "s2", scale)]
     elif claim == "landing-T2+T1":
-        prs = [S._landing_problem("T1* + T2*", lambda p: S._sum_exact(p) * scale)]
+        prs = [S._landing_problem("T1* + T2*", lambda p: min(S._sum_exact(p) * scale, cap))]
     elif claim == "s2-39-40":
         prs = [S._s2_band_problem(), S._t2_practical_problem("T2_practical_exact", scale)]
     elif claim == "s1-31-45":
         prs = [S._s1_band_problem(),
-               S._disturbed_landing_problem("(40) + (45) exact", lambda p: S._t3_sum(p) * scale)]
+               S._disturbed_landing_problem("(40) + (45) exact",
+                                            lambda p: min(S._t3_sum(p) * scale, cap))]
     else:
         raise ParameterError("claim", claim, f"one of {', '.join(CLAIMS)}")
     return [_fix(p, vals) for p in prs]
@@ -526,7 +529,7 @@ def search(ctx: Context, claim: str, envelope: Envelope | None, profile: str
             if key in seen:
                 continue
             seen.append(key)
-            for pr in claim_problems(claim, g, axis, scale):
+            for pr in claim_problems(claim, g, axis, scale, ctx.caps.get(claim, math.inf)):
                 if box is not None:
                     pr = on_box(pr, ax, (box[0][axis], box[1][axis]),
                                 (box[0][axis + 3], box[1][axis + 3]), claim == "reaching-16")
