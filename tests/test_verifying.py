@@ -165,3 +165,60 @@ def test_certificate_values_are_checked_by_name(value):
 def test_options_that_do_not_apply_are_refused_exit_2(system, args):
     r = run_lgw(["verify", system, *args])
     assert_one_error(r)
+
+
+@pytest.mark.parametrize("system", ["mars", "lunar", "eros"])
+@pytest.mark.parametrize("sub", ["", "sub"])
+def test_bad_plot_path_is_exit_2_before_any_work(tmp_path, sub, system, monkeypatch):
+    """--plot naming a file, or a folder below a file: one error line, exit 2, nothing written
+    and nothing flown (checked by the shared command before the work)."""
+    import importlib
+
+    def no_work(*a, **k):
+        raise AssertionError("flew before --plot was checked")
+
+    monkeypatch.setattr(importlib.import_module(f"lgw.tuning.{system}.verify"), "judge",
+                        no_work)
+    f = tmp_path / "a_file"
+    f.write_text("x")
+    r = run_lgw(["verify", system, "--plot", str(f / sub if sub else f)])
+    assert_one_error(r)
+    assert [p.name for p in tmp_path.iterdir()] == ["a_file"] and f.read_text() == "x"
+
+
+@pytest.mark.parametrize("system", ["mars", "lunar", "eros"])
+def test_every_verify_option_changes_what_is_computed_or_is_refused(system, tmp_path):
+    """In the spirit of python-control's kwargs_test.py: each option of ``lgw verify SYSTEM``
+    set alone to a valid non-default value either changes the planned job (its fingerprint)
+    or is refused with a named error; an accepted and ignored option is a defect."""
+    from lgw.tuning.spec import NO_PROBE, fingerprint, option_fields, probe_value
+    from lgw.tuning.system import get_system
+    from lgw.tuning.vocabulary import PROBE_GAINS
+
+    sysobj = get_system(system)
+    mod = sysobj.verb("verify").load()
+    base = fingerprint(mod.plan(mod.Options(), sysobj))
+    env = tmp_path / "env.toml"
+    first = mod.Options.VARIABLES[0].name
+    env.write_text(f"[envelope]\n{first} = [0.5, 1.0]\n")
+    gains = tmp_path / "g.toml"
+    gains.write_text(sysobj.gains_module().example())
+    special = {"envelope": env, "database": tmp_path / "db"}
+    seen = []
+    for f, o in option_fields(mod.Options):
+        if o.execution:
+            continue
+        v = special.get(f.name, o.probe)
+        v = gains if v == PROBE_GAINS else v
+        if v is NO_PROBE or v is None:
+            v = probe_value(f, o)
+        try:
+            opts = mod.Options(**{f.name: v})
+        except ParameterError:
+            seen.append((f.name, "refused"))
+            continue
+        assert fingerprint(mod.plan(opts, sysobj)) != base, f"{o.flag} = {v!r} is ignored"
+        seen.append((f.name, "changes"))
+    names = {n for n, _ in seen}
+    assert {"gains", "domain", "envelope", "witness", "claim", "scale", "max_excluded",
+            "min_cases", "examples", "profile", "seed", "random", "database"} <= names

@@ -526,18 +526,6 @@ def exit_code(results: Sequence[ClaimResult]) -> int:
 SIMPLIFY_FLIGHTS = 40  # most flights spent on rounding a witness
 
 
-def _simpler(x: float) -> list[float]:
-    """Simpler values for x, simplest first: 0, then 1, 2, ... 6 significant digits."""
-    if x == 0 or not math.isfinite(x):
-        return []
-    out = [0.0]
-    for digits in range(1, 7):
-        y = float(f"{x:.{digits - 1}e}")
-        if y not in out and y != x:
-            out.append(y)
-    return out
-
-
 def _u(claim: Claim) -> str:
     return f" {claim.unit}" if claim.unit else ""
 
@@ -622,6 +610,23 @@ class VerifyOptions(V.VerifyRun):
 
     def settings(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in self.SETTINGS}
+
+
+def verify_options(spec: str, claims: Mapping[str, Claim], variables: Sequence[Var],
+                   witness: str, profiles: Mapping[str, int], extras: Sequence[Extra] = (),
+                   module: str = __name__) -> type[VerifyOptions]:
+    """A system's verify options class: ``VerifyOptions`` with its judge (``spec``, import
+    path), claims (``--claim``, ``--scale``), state variables and witness extras
+    (``--witness``; ``witness`` a valid one, for the options test) and Hypothesis examples
+    per profile.  A system with settings of its own subclasses the result."""
+    ns: dict[str, Any] = {
+        "__module__": module, "__qualname__": "Options",
+        "__annotations__": {"claim": "tuple", "scale": "tuple", "witness": "str | None"},
+        "SPEC": spec, "CLAIMS": claims, "VARIABLES": tuple(variables),
+        "EXTRAS": tuple(extras), "PROFILES": dict(profiles),
+        "claim": claim_option(claims), "scale": scale_option(claims),
+        "witness": witness_option(variables, extras, witness)}
+    return dataclass(frozen=True)(type("Options", (VerifyOptions,), ns))
 
 
 # --- plan: options -> job --------------------------------------------------------------------
@@ -882,13 +887,15 @@ class VerifyJob(Job):
         digits) that keep the violation at or below half its margin, inside the envelope: what
         Hypothesis' capped shrinking leaves (a 2.1e-119 on an axis that plays no part) becomes
         a state a person reads and types.  At most ``budget`` flights."""
+        from lgw.theory.falsify import _roundings as roundings  # the falsifier's rounding
+
         if self.witness is not None:
             return rec
         keep = 0.5 * rec["margin"]
         best = dict(rec)
         flights = 0
         for i, var in enumerate(spec.VARIABLES):
-            for y in _simpler(best["row"][i]):
+            for y in roundings(best["row"][i]):
                 if flights >= budget:
                     return best
                 if (var.nonzero and y == 0.0) or self.domain == "envelope" and not \

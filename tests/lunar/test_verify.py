@@ -90,19 +90,6 @@ def test_bad_option_is_one_error_line_exit_2(args):
     assert_one_error(run_lgw(["verify", "lunar", *args]))
 
 
-@pytest.mark.parametrize("sub", ["", "sub"])
-def test_bad_plot_path_is_exit_2_before_any_work(tmp_path, sub, monkeypatch):
-    def no_work(*a, **k):
-        raise AssertionError("flew before --plot was checked")
-
-    monkeypatch.setattr(V, "judge", no_work)
-    f = tmp_path / "a_file"
-    f.write_text("x")
-    r = run_lgw(["verify", "lunar", "--plot", str(f / sub if sub else f)])
-    assert_one_error(r)
-    assert [p.name for p in tmp_path.iterdir()] == ["a_file"] and f.read_text() == "x"
-
-
 @pytest.mark.parametrize("system", ["mars", "lunar", "eros"])
 def test_a_database_makes_the_run_random_so_hypothesis_uses_it(system, tmp_path):
     """Hypothesis ignores the example database in a seeded run (hypothesis.seed sets

@@ -172,16 +172,3 @@ def test_landing_max_in_place_of_the_sum_is_violated_on_the_whole_domain(monkeyp
     found = MV.search(ctx, "landing-T2+T1", None, "ci")
     s = next(s for s in found if s["status"] == "refuted")
     assert s["witness"]["confirmed"] and s["witness"]["rechecked_margin"] < 0
-
-
-@pytest.mark.parametrize("sub", ["", "sub"])
-def test_bad_plot_path_is_exit_2_before_any_work(tmp_path, sub, monkeypatch):
-    def no_work(*a, **k):
-        raise AssertionError("flew before --plot was checked")
-
-    monkeypatch.setattr(MV, "judge", no_work)
-    f = tmp_path / "a_file"
-    f.write_text("x")
-    r = run_lgw(["verify", "mars", "--plot", str(f / sub if sub else f)])
-    assert_one_error(r)
-    assert [p.name for p in tmp_path.iterdir()] == ["a_file"] and f.read_text() == "x"

@@ -12,18 +12,7 @@ inconclusive.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import ClassVar
-
-from lgw.tuning.verifying import (
-    Claim,
-    Var,
-    VerifyOptions,
-    claim_option,
-    plan,
-    scale_option,
-    witness_option,
-)
+from lgw.tuning.verifying import Claim, Var, plan, verify_options
 
 TOL = "one sample dt = 0.01 s (an event between samples is seen at the next)"
 REACH = "first sample with |s_i| <= 1e-3 m/s or a sign change of s_i"
@@ -54,17 +43,8 @@ VARIABLES = (Var("ex", "m", "position error"), Var("ey", "m", "position error"),
              Var("phase", "rad", "phase of the disturbance"))
 
 
-@dataclass(frozen=True)
-class Options(VerifyOptions):
-    SPEC: ClassVar[str] = "lgw.tuning.eros.verify"
-    CLAIMS: ClassVar = CLAIMS
-    VARIABLES: ClassVar = VARIABLES
-    PROFILES: ClassVar = {"ci": 8, "thorough": 60}
-
-    claim: tuple = claim_option(CLAIMS)
-    scale: tuple = scale_option(CLAIMS)
-    witness: str | None = witness_option(
-        VARIABLES, (), "ex=5.0,ey=-3.0,ez=1.0,vx=0.1,vy=0.0,vz=-0.2,phase=1.0")
-
+Options = verify_options("lgw.tuning.eros.verify", CLAIMS, VARIABLES,
+                         "ex=5.0,ey=-3.0,ez=1.0,vx=0.1,vy=0.0,vz=-0.2,phase=1.0",
+                         {"ci": 8, "thorough": 60}, module=__name__)
 
 __all__ = ["CLAIMS", "VARIABLES", "Options", "plan"]

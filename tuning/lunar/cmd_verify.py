@@ -15,15 +15,7 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from lgw.tuning import vocabulary as V
-from lgw.tuning.verifying import (
-    Claim,
-    Var,
-    VerifyOptions,
-    claim_option,
-    plan,
-    scale_option,
-    witness_option,
-)
+from lgw.tuning.verifying import Claim, Var, plan, verify_options
 
 D_NORM = 0.5  # m/s^2, ||d|| of the general system (5) (chosen; lgw.sim.lunar.general)
 TOL = "none: the integrals are trapezoidal sums on the RK4 grid; the re-check halves the step"
@@ -59,16 +51,11 @@ VARIABLES = (Var("x1", "m", "height error"), Var("x2x", "m/s", "velocity error")
 
 
 @dataclass(frozen=True)
-class Options(VerifyOptions):
-    SPEC: ClassVar[str] = "lgw.tuning.lunar.verify"
-    CLAIMS: ClassVar = CLAIMS
-    VARIABLES: ClassVar = VARIABLES
-    PROFILES: ClassVar = {"ci": 16, "thorough": 120}
+class Options(verify_options("lgw.tuning.lunar.verify", CLAIMS, VARIABLES,
+                             "x1=50.0,x2x=1.0,x2y=-2.0,x2z=0.5", {"ci": 16, "thorough": 120},
+                             module=__name__)):
     SETTINGS: ClassVar = ("t_max", "dt", "thrust_max")
 
-    claim: tuple = claim_option(CLAIMS)
-    scale: tuple = scale_option(CLAIMS)
-    witness: str | None = witness_option(VARIABLES, (), "x1=50.0,x2x=1.0,x2y=-2.0,x2z=0.5")
     t_max: float = V.t_max(5.0, "flight time per case", hi=600.0)
     dt: float = V.dt(0.02, 0.1, "RK4 step (the re-check flies at dt/2)")
     thrust_max: float = V.thrust_max(2000.0, "per-axis saturation of the orbit command u "

@@ -17,16 +17,7 @@ from typing import ClassVar
 from lgw.tuning import vocabulary as V
 from lgw.tuning.options import Number
 from lgw.tuning.spec import option
-from lgw.tuning.verifying import (
-    Claim,
-    Extra,
-    Var,
-    VerifyOptions,
-    claim_option,
-    plan,
-    scale_option,
-    witness_option,
-)
+from lgw.tuning.verifying import Claim, Extra, Var, plan, verify_options
 
 TOL = "one RK4 step dt (an event is located on the step grid)"
 CLAIMS = {c.name: c for c in (
@@ -62,18 +53,11 @@ EXTRAS = (Extra("disturbance", ("worst", "random"), "the disturbance flown (dist
 
 
 @dataclass(frozen=True)
-class Options(VerifyOptions):
-    SPEC: ClassVar[str] = "lgw.tuning.mars.verify"
-    CLAIMS: ClassVar = CLAIMS
-    VARIABLES: ClassVar = VARIABLES
-    EXTRAS: ClassVar = EXTRAS
-    PROFILES: ClassVar = {"ci": 20, "thorough": 150}
+class Options(verify_options("lgw.tuning.mars.verify", CLAIMS, VARIABLES,
+                             "rx=-500.0,ry=1000.0,rz=1200.0,vx=10.0,vy=-50.0,vz=-40.0",
+                             {"ci": 20, "thorough": 150}, EXTRAS, module=__name__)):
     SETTINGS: ClassVar = ("dt", "eps")
 
-    claim: tuple = claim_option(CLAIMS)
-    scale: tuple = scale_option(CLAIMS)
-    witness: str | None = witness_option(
-        VARIABLES, EXTRAS, "rx=-500.0,ry=1000.0,rz=1200.0,vx=10.0,vy=-50.0,vz=-40.0")
     dt: float = V.dt(0.05, 1.0, "RK4 step (the re-check flies at dt/2)")
     eps: float = option("--eps", Number(0, 1e3, lo_open=True, unit="m or m/s"), 0.05,
                         "the bands |s1_i| <= eps (m) and |s2_i| <= eps (m/s) of the time claims",

@@ -15,3 +15,22 @@ Installed with the package; needs Hypothesis (``pip install "lgw[verify]"``).
 """
 
 SYSTEMS = ("mars", "lunar", "eros")
+
+
+def checker(system: str):
+    """``check_bounds(gains=None, *, claims=None, **options)`` of ``system``: run ``lgw verify
+    SYSTEM``'s checks on a gain set (an object of the system, a TOML path, or None for the
+    built-in one) and return the ``lgw.tuning.verifying.ClaimResult`` records it prints;
+    ``claims`` restricts them, ``options`` as ``lgw.tuning.verifying.run_checks``."""
+
+    def check_bounds(gains=None, *, claims=None, **options) -> list:
+        from lgw.tuning.verifying import run_checks
+
+        return run_checks(system, gains, **({"claim": claims} if claims else {}), **options)
+
+    check_bounds.__doc__ = (
+        f"Run ``lgw verify {system}``'s checks on a gain set (an object of the system, a TOML "
+        "path, or None for the built-in one) and return the ``lgw.tuning.verifying."
+        "ClaimResult`` records it prints; ``claims`` restricts them, ``options`` as "
+        "``lgw.tuning.verifying.run_checks``.")
+    return check_bounds

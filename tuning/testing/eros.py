@@ -15,12 +15,12 @@ prints.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
+from lgw.testing import checker
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros.gains import Gains, gains_from_dict
 
@@ -58,18 +58,11 @@ def state_batches(n_min: int = 1, n_max: int = 16, e_max: float = P.MC_POS,
         hnp.arrays(np.float64, (n,), elements=ph)))
 
 
-# --- property helpers: the records lgw verify eros prints ----------------------------------
+# --- property helpers: the records lgw verify eros prints -------------------------------
 
-def check_bounds(gains: Gains | str | Path | None = None, *,
-                 claims: tuple[str, ...] | None = None, **options) -> list:
-    """Run ``lgw verify eros``'s checks on a gain set (a Gains, a TOML path, or None for the
-    default) and return its ``lgw.tuning.verifying.ClaimResult`` records; ``options`` as
-    ``lgw.tuning.verifying.run_checks``.  A file's [certificate] promises are checked too."""
-    from lgw.tuning.verifying import run_checks
-
-    return run_checks("eros", gains, **({"claim": claims} if claims else {}), **options)
+check_bounds = checker("eros")
 
 
-def check_tracking_within_bound(gains: Gains | str | Path | None = None, **options) -> list:
+def check_tracking_within_bound(gains=None, **options) -> list:
     """The reaching + sliding time claims alone (known and unknown disturbance)."""
     return check_bounds(gains, claims=("time-known", "time-unknown"), **options)

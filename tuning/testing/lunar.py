@@ -13,13 +13,13 @@ The helpers return ``lgw.tuning.verifying.ClaimResult`` records, the rows
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
-from lgw.theory.lunar.gains import Gains, LoopGains, make_loop
+from lgw.testing import checker
+from lgw.theory.lunar.gains import LoopGains, make_loop
 
 X1_MAX = 100.0  # m, |x1(0)|
 X2_MAX = 5.0  # m/s, |x2_i(0)|
@@ -47,20 +47,12 @@ def state_batches(n_min: int = 1, n_max: int = 8, x1_max: float = X1_MAX,
         hnp.arrays(np.float64, (n,), elements=a), hnp.arrays(np.float64, (n, 3), elements=b)))
 
 
-# --- property helpers: the records lgw verify lunar prints ---------------------------------
+# --- property helpers: the records lgw verify lunar prints -------------------------------
 
-def check_bounds(gains: Gains | str | Path | None = None, *,
-                 claims: tuple[str, ...] | None = None, **options) -> list:
-    """Run ``lgw verify lunar``'s checks on a gain set's orbit loop (a Gains, a TOML path with
-    [orbit] / [attitude], or None for seed 001 Section 5's) and return its
-    ``lgw.tuning.verifying.ClaimResult`` records; ``options`` as
-    ``lgw.tuning.verifying.run_checks``."""
-    from lgw.tuning.verifying import run_checks
-
-    return run_checks("lunar", gains, **({"claim": claims} if claims else {}), **options)
+check_bounds = checker("lunar")
 
 
-def check_l2_bounds(gains: Gains | str | Path | None = None, **options) -> list:
+def check_l2_bounds(gains=None, **options) -> list:
     """The L2-gain claims (18a), (18b), (19a), (19b) derived and (21a) alone."""
     return check_bounds(gains, claims=("(18a)", "(18b)", "(19a)", "(19b) derived", "(21a)"),
                         **options)

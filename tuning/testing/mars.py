@@ -14,12 +14,12 @@ prints.
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
+from lgw.testing import checker
 from lgw.theory.mars.gains import Gains, gains_from_dict
 
 
@@ -93,18 +93,11 @@ def state_batches(n_min: int = 1, n_max: int = 4) -> st.SearchStrategy[tuple[np.
         hnp.arrays(np.float64, (n, 3), elements=velocities)))
 
 
-# --- property helpers: the records lgw verify prints ----------------------------------------
+# --- property helpers: the records lgw verify mars prints -------------------------------
 
-def check_bounds(gains: Gains | str | Path | None = None, *,
-                 claims: tuple[str, ...] | None = None, **options) -> list:
-    """Run ``lgw verify mars``'s checks on a gain set (a Gains, a TOML path, or None for the
-    default) and return its ``lgw.tuning.verifying.ClaimResult`` records; ``options`` as
-    ``lgw.tuning.verifying.run_checks``.  A file's [certificate] promises are checked too."""
-    from lgw.tuning.verifying import run_checks
-
-    return run_checks("mars", gains, **({"claim": claims} if claims else {}), **options)
+check_bounds = checker("mars")
 
 
-def check_landing_within_bound(gains: Gains | str | Path | None = None, **options) -> list:
+def check_landing_within_bound(gains=None, **options) -> list:
     """The landing-time claim alone (T2* + T1*, or the certificate's promise)."""
     return check_bounds(gains, claims=("landing-T2+T1",), **options)
