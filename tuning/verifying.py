@@ -355,6 +355,7 @@ class Tally:
     informative: int = 0
     fallback: int = 0
     excluded: dict[str, int] = field(default_factory=dict)
+    examples: dict[str, list[float]] = field(default_factory=dict)  # a state per reason
     worst: dict[str, Any] | None = None
     violation: dict[str, Any] | None = None
     points: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = field(default_factory=list)
@@ -387,6 +388,7 @@ class Tally:
                 why = f"cannot violate: {self.claim.uninformative}"
             if why is not None:
                 self.excluded[why] = self.excluded.get(why, 0) + 1
+                self.examples.setdefault(why, [float(x) for x in j.states[i]])
         sel = useful & case_useful[:, None]
         if sel.any():
             self.points.append((bnd[sel], obs[sel], m[sel] < 0))
@@ -439,6 +441,7 @@ class ClaimResult:
     total: int = 0
     informative: int = 0
     excluded: dict[str, int] = field(default_factory=dict)
+    excluded_examples: dict[str, list[float]] = field(default_factory=dict)
     min_cases: int = 0
     max_excluded: float = MAX_EXCLUDED
     margin: float | None = None
@@ -481,6 +484,7 @@ class ClaimResult:
                                              "informative": self.informative,
                                              "excluded": self.n_excluded,
                                              "excluded_reasons": dict(self.excluded),
+                                             "excluded_examples": dict(self.excluded_examples),
                                              "fallback": self.fallback},
                 "min_cases": self.min_cases, "max_excluded": self.max_excluded,
                 "margin": self.margin, "worst": self.worst, "scale": self.scale,
@@ -819,6 +823,7 @@ class VerifyJob(Job):
         if tally is not None:
             r.total, r.informative, r.fallback = tally.total, tally.informative, tally.fallback
             r.excluded = dict(tally.excluded)
+            r.excluded_examples = dict(tally.examples)
             r.worst = tally.worst
             r.margin = tally.worst["margin"] if tally.worst else None
             r.points = tally.plot_points()
@@ -935,11 +940,11 @@ class VerifyJob(Job):
                    if rec.get("tolerance") else "")
             lines.append(f"  observed: {claim.observed} = {_g(rec['observed'], '.6g')}"
                          f"{_u(claim)}{tol}{ax}")
-            src = (f", at most the certificate's promise {r.promise['text']}" if r.promise
+            sc = f" x {r.scale:g} (--scale)" if r.scale != 1.0 else ""
+            src = (f", capped by the certificate's promise {r.promise['text']}" if r.promise
                    else "")
-            sc = f", x {r.scale:g} by --scale" if r.scale != 1.0 else ""
-            lines.append(f"  bound: {claim.bound} = {_g(rec['bound'], '.6g')}{_u(claim)}"
-                         f"{src}{sc}; margin (bound - observed)/bound = {rec['margin']:.4g}")
+            lines.append(f"  bound: {claim.bound}{sc}{src} = {_g(rec['bound'], '.6g')}"
+                         f"{_u(claim)}; margin (bound - observed)/bound = {rec['margin']:.4g}")
         if rec.get("note"):
             lines.append(f"  {rec['note']}")
         lines.append(f"  state: {state_text(rec['row'], spec.VARIABLES)}"
@@ -994,6 +999,7 @@ class VerifyJob(Job):
     def _render(self, con: Any, results: list[ClaimResult], timings: dict[str, float]) -> None:
         from lgw.tuning.tables import result_table
 
+        spec_vars = importlib.import_module(self.spec).VARIABLES
         def p(s: str) -> None:
             con.print(s, markup=False, highlight=False, soft_wrap=True)
 
@@ -1017,13 +1023,19 @@ class VerifyJob(Job):
           f"{self.max_excluded:.0%} excluded")
         for r in results:
             for why, n in r.excluded.items():
-                p(f"{r.claim}: {n} excluded: {why}")
+                ex = r.excluded_examples.get(why)
+                p(f"{r.claim}: {n} excluded: {why}"
+                  + (f" (e.g. {state_text(ex, spec_vars)})" if ex is not None else ""))
             if r.fallback:
                 p(f"{r.claim}: {r.fallback} cases carried by the fallback integrator")
-            for s in r.search:
-                p(f"{r.claim}: search (axis {s.get('axis')}, {s.get('domain_name', '')}): "
-                  f"{s['evaluations']} evaluations, best margin {_g(s['best_margin'])}, "
-                  f"{s['status']}")
+            if r.search:
+                best = min(r.search, key=lambda s: s["best_margin"])
+                bad = sum(s["status"] == "refuted" for s in r.search)
+                p(f"{r.claim}: search: {len(r.search)} runs (axis x box x problem), "
+                  f"{sum(s['evaluations'] for s in r.search)} evaluations, best margin "
+                  f"{_g(best['best_margin'])} (axis {best.get('axis')}, "
+                  f"{best.get('domain_name', '')}), " + (f"{bad} refuted" if bad else
+                                                          "none refuted"))
             if r.promise:
                 p(f"{r.claim}: checked against the certificate's promise {r.promise['text']}")
             if r.message:
@@ -1032,8 +1044,8 @@ class VerifyJob(Job):
                 p(f"{r.claim}: {r.why}")
             elif r.why:
                 p(f"{r.claim}: {r.verdict}: {r.why}")
-        p(f"{timings.get('total', 0.0):.1f} s ("
-          + ", ".join(f"{k} {v:.1f} s" for k, v in timings.items() if k != "total") + ")")
+        parts = ", ".join(f"{k} {v:.1f} s" for k, v in timings.items() if k != "total")
+        p(f"{timings.get('total', 0.0):.1f} s" + (f" ({parts})" if parts else ""))
 
 
 # --- certificates: every value verify reads is checked by name ------------------------------
