@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import pytest
 
+from tests.test_plugin import LUNAR
+
 pytest_plugins = ["pytester"]
 # a fresh pytest process per run (imports, Hypothesis): tens of seconds on a loaded machine
 pytestmark = pytest.mark.slow
@@ -20,13 +22,7 @@ def test_gains_keep_every_proven_bound(lgw_claim):
     lgw_claim.assert_holds()
 """
 
-GAINS = """[orbit]
-K1 = [0.1, 0.1, 0.1]
-F2 = [1.0, 1.0, 20.0]
-f3 = 0.25
-d0e0 = 0.0
-q = 0.01
-"""
+GAINS = LUNAR  # seed 001 Section 5's orbit loop
 
 
 def _project(pytester, extra: str = ""):

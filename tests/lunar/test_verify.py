@@ -49,8 +49,8 @@ def test_saturation_that_never_acts_leaves_18_uninformative():
 
 
 def test_provoked_violation_prints_a_reproduction_that_reproduces_it():
-    r = run_lgw(["verify", "lunar", "--t-max", "2", "--examples", "3", "--claim", "(19a)",
-                 "--scale", "(19a)=0.25"])
+    r = run_lgw(["verify", "lunar", "--t-max", "1", "--examples", "3", "--claim", "(19a)",
+                 "--scale", "(19a)=0.01"])
     assert r.code == 1, r.stdout
     assert "_fly_cases" not in r.stdout and "python" not in r.stdout
     repro = next(ln.split("reproduce: ", 1)[1] for ln in r.stdout.splitlines()

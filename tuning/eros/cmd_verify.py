@@ -17,22 +17,24 @@ from lgw.tuning.verifying import Claim, Var, plan, verify_options
 TOL = "one sample dt = 0.01 s (an event between samples is seen at the next)"
 REACH = "first sample with |s_i| <= 1e-3 m/s or a sign change of s_i"
 TRACK = "first sample after which |e_i| <= 1 cm to the end of the run (never: inf)"
+ON_SURFACE = "|s_i(0)| <= 1e-3 m/s: it starts on the sliding surface"
+TRACKED = "|e_i(0)| <= 1 cm and |s_i(0)| <= 1e-3 m/s: it starts tracked"
+
+
+def _mode(mode: str, eq: str, t_r: str, dbar: str) -> tuple[Claim, Claim]:
+    """The reaching and reaching + sliding claims of one disturbance mode."""
+    return (Claim(f"reaching-{mode}", f"(15)-(18), {eq}", mode, REACH,
+                  f"t_r = {t_r} (lgw.theory.eros.bounds.axis_time_bound, {dbar})", "s",
+                  ON_SURFACE, TOL),
+            Claim(f"time-{mode}", f"(6),(18), {eq}", mode, TRACK,
+                  f"t_r + t_s(e_max) of axis_time_bound ({dbar})", "s", TRACKED, TOL))
+
+
 CLAIMS = {c.name: c for c in (
-    Claim("reaching-known", "(15)-(18), D known", "known", REACH,
-          "t_r = |s0|/k (lgw.theory.eros.bounds.axis_time_bound, dbar = 0)", "s",
-          "|s_i(0)| <= 1e-3 m/s: it starts on the sliding surface", TOL),
-    Claim("time-known", "(6),(18), D known", "known", TRACK,
-          "t_r + t_s(e_max) of axis_time_bound (dbar = 0)", "s",
-          "|e_i(0)| <= 1 cm and |s_i(0)| <= 1e-3 m/s: it starts tracked", TOL),
-    Claim("reaching-unknown", "(15)-(18), |D| <= dbar", "unknown", REACH,
-          "t_r = |s0|/(k - dbar) of axis_time_bound, dbar = 0.05 m/s^2", "s",
-          "|s_i(0)| <= 1e-3 m/s: it starts on the sliding surface", TOL),
-    Claim("time-unknown", "(6),(18), |D| <= dbar", "unknown", TRACK,
-          "t_r + t_s(e_max) of axis_time_bound, dbar = 0.05 m/s^2", "s",
-          "|e_i(0)| <= 1 cm and |s_i(0)| <= 1e-3 m/s: it starts tracked", TOL),
+    *_mode("known", "D known", "|s0|/k", "dbar = 0"),
+    *_mode("unknown", "|D| <= dbar", "|s0|/(k - dbar)", "dbar = 0.05 m/s^2"),
     Claim("certificate-time", "certificate", "certificate", TRACK,
-          "the certificate's bound_t_total (lgw tune eros)", "s",
-          "|e_i(0)| <= 1 cm and |s_i(0)| <= 1e-3 m/s: it starts tracked", TOL),
+          "the certificate's bound_t_total (lgw tune eros)", "s", TRACKED, TOL),
     Claim("certificate-u", "certificate", "certificate", "max |u_i| over the run",
           "the certificate's u_max = thrust-max / probe mass (lgw tune eros)", "m/s^2",
           "never: every case commands a control", ""),
