@@ -81,7 +81,7 @@ def test_verify_no_violation_small_campaign():
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     for c in out["claims"]:  # (the full checks: tests/eros/test_verify.py)
-        assert c["verdict"] == "holds" and c["ratio"] <= 1 and c["n_excluded"] == 0
+        assert c["verdict"] in ("holds", "not-applicable") and (c["margin"] or 0) >= 0
 
 
 @pytest.mark.slow

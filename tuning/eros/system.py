@@ -1,6 +1,6 @@
 """Seed 002 (probe landing on 433 Eros, fuzzy fast terminal sliding mode) as a ``System``."""
 
-from lgw.tuning.system import Legacy, NotApplicable, System, Verb
+from lgw.tuning.system import NotApplicable, System, Verb
 
 _M = "lgw.tuning.eros"
 
@@ -15,7 +15,7 @@ SYSTEM = System(
                          "vs derived, for a gain set"),
         "simulate": Verb(f"{_M}.cmd_simulate", "the six controllers on the 15 s scenario "
                            "or a Monte Carlo campaign"),
-        "verify": Legacy(f"{_M}.cmd_verify", "Monte Carlo tracking times against the proven "
+        "verify": Verb(f"{_M}.cmd_verify", "Monte Carlo tracking times against the proven "
                          "per-case reaching + sliding bound"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),

@@ -15,7 +15,7 @@ SYSTEM = System(
                          "landing-time bound for a gain set"),
         "simulate": Verb(f"{_M}.cmd_simulate", "batched simulation and Monte Carlo "
                            "campaigns of the closed loop"),
-        "verify": Legacy(f"{_M}.cmd_verify", "property campaign: observed times and "
+        "verify": Verb(f"{_M}.cmd_verify", "property campaign: observed times and "
                          "neighbourhoods against the proven bounds"),
         "tune": Verb(f"{_M}.cmd_tune", "gain design for a landing time and a thrust "
                        "limit, with a certificate"),
