@@ -63,7 +63,7 @@ class Options(Options):
     thrust_max: float | None = V.thrust_max(None, "engine thrust limit T_max of (24) "
                                             "[default: the paper's]")
     dt: float | None = V.dt(None, 0.1, "RK4 step (<= 0.1 s: RK4 stability with F2 = 20) "
-                            "[default: the documented choice]")
+                            "[default: the documented choice]", probe=0.02)
     t_max: float | None = V.t_max(None, "end time", hi=1e5)
     json: bool = V.json_flag()
     out: Path | None = V.out_dir("summary.json (the --json document) and section5.png")
