@@ -87,7 +87,7 @@ class TuneJob(Job):
                 "candidates_tried": len(res["tried"])}
         text = gains_to_toml(g, "lgw tune eros: seed 002 FTSMC gains") + "\n[certificate]\n"
         text += "\n".join(f"{k} = {json.dumps(v)}" for k, v in cert.items()) + "\n"
-        return Outcome({"feasible": True, "tuned_gains": g.to_dict()["gains"],
+        return Outcome({**g.to_dict(), "feasible": True, "tuned_gains": g.to_dict()["gains"],
                         "certificate": cert},
                        render=lambda con: _render(con, g, cert), files={"gains.toml": text})
 

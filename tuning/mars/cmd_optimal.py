@@ -108,7 +108,7 @@ class OptimalJob(Job):
         if self.replay:
             progress.stage("open-loop replays in the plant")
             reps = _replays(sol, self.drag)
-        doc: dict[str, Any] = {"gains": None, "plant": "mars",
+        doc: dict[str, Any] = {"plant": "mars",
                                "solution": sol.to_dict(arrays=True), "sources": _sources(sol),
                                "replays": reps, "paper_fuel_optimal_kg": PAPER_FUEL_OPTIMAL}
         if mt is not None:
