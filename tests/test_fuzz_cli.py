@@ -67,14 +67,15 @@ def no_heavy_work(monkeypatch):
     import lgw.sim.mars.campaign as scamp
     import lgw.sim.mars.optimal as so
     import lgw.sim.mars.reference as sr
-    import lgw.tuning.mars.cmd_compare as cc
     import lgw.tuning.mars.cmd_simulate as cs
-    import lgw.tuning.mars.cmd_tune as ct
+    import lgw.tuning.mars.compare as cc
+    import lgw.tuning.mars.design as ct
+    import lgw.tuning.mars.design_bounded as cb
     import lgw.tuning.options as topt
 
     for mod, name in ((scamp, "run_campaign"), (cs, "fig6"), (sr, "simulate_reference"),
-                      (ct, "tune"), (so, "solve_fuel_optimal"), (so, "min_time"),
-                      (cc, "run_comparison"), (topt, "check_scheduler")):
+                      (ct, "tune"), (cb, "tune_bounded"), (so, "solve_fuel_optimal"),
+                      (so, "min_time"), (cc, "run_comparison"), (topt, "check_scheduler")):
         monkeypatch.setattr(mod, name, _stub)
 
 
@@ -674,3 +675,64 @@ def test_fuzz_gains_files_real_runs_long(system, tmp_path_factory):
                   out, system)
 
     run()
+
+
+@FUNCTION_SCOPED
+@given(cmd=verb_command_lines(verbs={"bounds"}))
+def test_fuzz_bounds_options_run_for_real(tmp_path_factory, cmd):
+    """Random option values into ``lgw bounds SYSTEM`` run for real (cheap for every system):
+    values the options accept must be values the bounds can evaluate."""
+    verb, system, args = cmd
+    d = tmp_path_factory.mktemp("bo")
+    out = d / "out"
+    check_any(run_lgw([verb, system, *args, "--json", "--out", str(out)]), out, system)
+
+
+# Inputs that once ended in an internal error, an endless run or an impossible number: each is
+# now a named error (exit 2, nothing written) naming the option and its valid range.
+NAMED = [
+    (["bounds", "lunar", "--eq0-min", "1e-170"], "--eq0-min", "[0.001, 1]"),
+    (["simulate", "eros", "--t-max", "0.001", "--dt", "0.01"], "--dt", "<= --t-max"),
+    (["simulate", "eros", "--dt", "1e-300"], "--dt", "at most"),
+    (["simulate", "lunar", "--dt", "1e-300"], "--dt", "at most"),
+    (["optimal", "mars", "--thrust-min", "86000"], "--thrust-min", "must be <"),
+    (["optimal", "mars", "--thrust-min", "90000"], "--thrust-min", "must be in [0,"),
+    (["optimal", "mars", "--isp", "1e300"], "--isp", "(0, 100000]"),
+    (["optimal", "mars", "--drag", "physical", "--no-replay"], "--drag", "--replay"),
+]
+
+
+@pytest.mark.parametrize("args, name, valid", NAMED, ids=lambda x: str(x)[:40])
+def test_former_internal_errors_are_named_errors(args, name, valid, tmp_path):
+    out = tmp_path / "out"
+    r = run_lgw([*args, "--out", str(out)])
+    assert_one_error(r)
+    assert name in r.stderr and valid in r.stderr, r.stderr
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("args", [["simulate", "mars", "--dispersion", "table2"],
+                                  ["simulate", "lunar"], ["simulate", "eros"],
+                                  ["report", "eros", "--json"]])
+def test_the_largest_cases_is_estimated_before_allocating(args, tmp_path, monkeypatch):
+    """The largest --cases each system allows fails by the memory estimate, with the number
+    that fits, never a MemoryError (the available memory is pinned so the test does not depend
+    on the machine)."""
+    import lgw.tuning.io as tio
+    from lgw.tuning.mars import cmd_simulate as ms
+    from lgw.tuning.vocabulary import MAX_CASES
+
+    monkeypatch.setattr(tio, "available_memory", lambda: 8 * 2**30)
+    monkeypatch.setattr(ms, "available_memory", lambda: 8 * 2**30)
+    out = tmp_path / "out"
+    r = run_lgw([*args, "--cases", str(MAX_CASES), "--out", str(out)])
+    assert_one_error(r)
+    assert "--cases" in r.stderr and "GiB" in r.stderr, r.stderr
+    assert not out.exists()
+
+
+def test_optimal_tf_beyond_the_propellant_names_the_feasible_interval():
+    """--tf 9999 used to say "must be >= 13.667 s"; it is too long, not too short."""
+    r = run_lgw(["optimal", "mars", "--tf", "9999", "--n", "20", "--no-replay"])
+    assert_one_error(r)
+    assert "--tf" in r.stderr and "must be <=" in r.stderr and "propellant" in r.stderr
