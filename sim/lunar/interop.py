@@ -29,15 +29,8 @@ from typing import Any
 
 import control
 import numpy as np
-from lgw.sim.lunar import laws
 from lgw.sim.lunar import plant as PL
-from lgw.sim.lunar.closed_loop import (
-    ZETA,
-    Context,
-    RunOptions,
-    desired_direction,
-    make_context,
-)
+from lgw.sim.lunar.closed_loop import Context, RunOptions, field, make_context
 from lgw.sim.lunar.closed_loop import initial_state as _initial_state
 from lgw.theory.lunar import parameters as P
 from lgw.theory.lunar.gains import Gains, LoopGains
@@ -135,7 +128,9 @@ def law(g: Gains, opts: RunOptions | None = None, *, ref: Any = None, name: str 
     """The orbit and attitude laws (7)-(11), the command filter and the actuators of
     ``lgw.sim.lunar.closed_loop.field`` (``opts``: saturation reading, failure, pointing,
     limits; ``ref``: the reference trajectory, solved once); inputs the plant's states, outputs
-    the applied F and M; gains as params (``gain_params``)."""
+    the applied F and M; gains as params (``gain_params``).  It evaluates ``field`` itself on
+    the whole state (the plant's from its inputs, its own) and keeps the vehicle's side: one
+    closed loop, written once."""
     from lgw.sim.lunar.reference import reference
 
     ref = reference() if ref is None else ref
@@ -149,83 +144,19 @@ def law(g: Gains, opts: RunOptions | None = None, *, ref: Any = None, name: str 
             cache[key] = make_context(ref, [gains_of(params, g)], opts)
         return cache[key]
 
-    def signals(t, x, u, params):
-        """Everything field computes on the vehicle's side, for one case."""
-        c = ctx_for(params)
-        y, Q, om = (np.asarray(u[:7], float)[:, None], np.asarray(u[7:11], float)[:, None],
-                    np.asarray(u[11:14], float)[:, None])
-        lam1o, lam2o, d0eo = x[0:1], x[1:4, None], x[4:5]
-        lam1a, lam2a, d0ea = x[5:8, None], x[8:11, None], x[11:12]
-        af, afd, pf, pfd = x[12:13], x[13:14], x[14:15], x[15:16]
-        m = y[6]
-        rs = ref.state(t)
-        alpha_d, psi_d, _, _ = ref.angles(t)
-        unorm = P.T_NOMINAL * np.array([np.cos(alpha_d) * np.cos(psi_d),
-                                        np.cos(alpha_d) * np.sin(psi_d),
-                                        np.sin(alpha_d)])[:, None]
-        eh, ev = y[0] - rs[0], y[3:6] - rs[1:4][:, None]
-        uco, _, nzo, _ = laws.orbit_command(eh, ev, lam1o, lam2o, d0eo, m, c.go)
-        sat = PL.saturate_thrust(uco, unorm, opts.thrust_max, opts.sat_reading)
-        fac = PL.failure_factor(t, c.tf, opts.failure, opts.Ta, opts.t_fail)
-        total_cmd = sat + unorm
-        T = fac * np.linalg.norm(total_cmd, axis=0)
-        n_act = (PL.thrust_axis(Q) if opts.thrust_pointing == "coupled"
-                 else total_cmd / np.linalg.norm(total_cmd, axis=0))
-        F = -T * n_act
-        ydot = PL.translational_rhs(y, F, T)  # the accelerations the navigation knows
-        ac, pc = desired_direction(total_cmd)
-        wn = opts.cmd_wn
-        afdd = wn * wn * (ac - af) - 2 * ZETA * wn * afd
-        pfdd = wn * wn * (pc - pf) - 2 * ZETA * wn * pfd
-        th, thd, thdd = -af, -afd, -afdd
-        Qd = PL.quat_from_yaw_pitch(pf, th)
-        wd = np.array([-pfd * np.sin(th), thd, pfd * np.cos(th)])
-        wdd = np.array([-pfdd * np.sin(th) - pfd * thd * np.cos(th), thdd,
-                        pfdd * np.cos(th) - pfd * thd * np.sin(th)])
-        eQ = PL.qmul(PL.qconj(Qd), Q)
-        Le = PL.dcm(eQ)
-        Lwd = PL.matvec(Le, wd)
-        ew = om - Lwd
-        w_hp, w_hp_dot = PL.omega_hp(y, ydot)
-        LBH = PL.dcm(Q)
-        a, adot = PL.matvec(LBH, w_hp), PL.matvec(LBH, w_hp_dot)
-        J = c.J
-        Om = om + a
-        f2 = (-PL.cross(Om, J * Om) / J - adot + PL.cross(om, a) + PL.cross(ew, Lwd)
-              - PL.matvec(Le, wdd))
-        Mc, _, nza, _ = laws.attitude_command(eQ[0], eQ[1:], ew, lam1a, lam2a, d0ea, f2,
-                                              np.broadcast_to(J, om.shape), c.ga)
-        M = PL.saturate_torque(Mc, opts.torque_max)
-        return dict(c=c, uco=uco, T=T, n_act=n_act, unorm=unorm, F=F, M=M, Mc=Mc, m=m,
-                    nzo=nzo, nza=nza, eQ=eQ, afd=afd, afdd=afdd, pfd=pfd, pfdd=pfdd,
-                    lam1o=lam1o, lam2o=lam2o, lam1a=lam1a, lam2a=lam2a, J=J)
+    def whole(x, u) -> np.ndarray:
+        return from_blocks(np.concatenate([np.asarray(u, float), np.asarray(x, float)]))[:, None]
 
     def updfcn(t, x, u, params):
         if not _vehicle(u):
-            return np.zeros(16)
-        s = signals(t, np.asarray(x, float), u, params)
-        c = s["c"]
-        du_o = (s["T"] * s["n_act"] - s["unorm"]) - s["uco"]
-        F1o = c.go["K1"][2, 2]
-        l1o = -F1o * s["lam1o"] - s["lam2o"][2]
-        l2o = (-np.einsum("ijn,jn->in", c.go["F2"], s["lam2o"])
-               + np.array([0 * s["lam1o"], 0 * s["lam1o"], s["lam1o"]]) - du_o / s["m"])
-        e0, ev_ = s["eQ"][0], s["eQ"][1:]
-        f1 = 0.5 * (e0 * np.eye(3)[:, :, None] + PL.skew(ev_))
-        F1a = np.einsum("ijn,jkn,lkn->iln", f1, c.ga["K1"], f1)
-        du_a = s["M"] - s["Mc"]
-        l1a = -PL.matvec(F1a, s["lam1a"]) + PL.matvec(f1, s["lam2a"])
-        l2a = (-PL.matvec(c.ga["F2"], s["lam2a"]) - np.einsum("jin,jn->in", f1, s["lam1a"])
-               + du_a / s["J"])
-        return np.concatenate([l1o, l2o[:, 0], c.go["q"] * s["nzo"], l1a[:, 0], l2a[:, 0],
-                               c.ga["q"] * s["nza"], s["afd"], s["afdd"], s["pfd"],
-                               s["pfdd"]])
+            return np.zeros(len(LAW_STATES))
+        return field(t, whole(x, u), ctx_for(params))[_LAW_INDEX, 0]
 
     def outfcn(t, x, u, params):
         if not _vehicle(u):
             return np.zeros(6)
-        s = signals(t, np.asarray(x, float), u, params)
-        return np.concatenate([s["F"][:, 0], s["M"][:, 0]])
+        _, out = field(t, whole(x, u), ctx_for(params), outputs=True)
+        return np.concatenate([out["force"][:, 0], out["torque"][:, 0]])
 
     return control.nlsys(updfcn, outfcn, inputs=PLANT_STATES, outputs=FORCES + TORQUES,
                          states=LAW_STATES, name=name, params=gain_params(g))
