@@ -175,7 +175,8 @@ def test_gains_that_is_not_a_regular_file_is_refused_without_hanging(kind, tmp_p
 
 @pytest.mark.parametrize("args", [
     ["report", "eros", "--no-sim"],  # pure Python (SymPy)
-    ["simulate", "mars", "--dispersion", "table2", "--cases", "200000"],  # numba
+    pytest.param(["simulate", "mars", "--dispersion", "table2", "--cases", "200000"],
+                 marks=pytest.mark.slow),  # numba
 ])
 def test_ctrl_c_exits_130_and_writes_nothing(args, tmp_path):
     """SIGINT to a real ``lgw`` process once its work has started: exit 130 (never 1, which

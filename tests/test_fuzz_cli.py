@@ -521,10 +521,37 @@ def eros_csv_docs(draw) -> bytes:
     return ("\n".join(rows) + "\n").encode("utf-8", "replace")
 
 
+# upper ends for valid draws that keep a real run short (the option's own range otherwise)
+SHORT = {"--t-max": 20.0, "--tf": 120.0, "--ts": 60.0, "--cases": 4, "--n": 40,
+         "--t-fail": 20.0, "--fresh-cases": 4, "--workers": 1, "--scheduler-timeout": 5.0}
+
+
+def _valid_value(o) -> st.SearchStrategy:
+    """Values inside the option's declared range (short runs: ``SHORT``), edges included."""
+    t = o.type
+    lo, hi = getattr(t, "lo", None), getattr(t, "hi", None)
+    cap = SHORT.get(o.flag)
+    if type(t).__name__ == "Integer":
+        lo_i = 0 if lo is None else int(lo)
+        hi_i = int(min(hi if hi is not None else lo_i + 100, cap if cap else lo_i + 100))
+        return st.integers(lo_i, max(lo_i, hi_i)).map(str)
+    if type(t).__name__ == "Number":
+        lo_f = 0.0 if lo is None else float(lo)
+        hi_f = float(hi) if hi is not None else lo_f + 1e3
+        if cap is not None:
+            hi_f = min(hi_f, cap)
+        edges = [x for x in (lo_f, hi_f) if not (x == lo and t.lo_open)
+                 and not (x == hi and t.hi_open)]
+        return st.one_of(st.floats(lo_f, hi_f, exclude_min=t.lo_open, exclude_max=t.hi_open,
+                                   allow_nan=False).map(repr),
+                         st.sampled_from(edges or [(lo_f + hi_f) / 2]).map(repr))
+    return option_values
+
+
 def _option_value(o) -> st.SearchStrategy:
     if getattr(o.type, "choices", None):
         return st.one_of(st.sampled_from(list(o.type.choices)), option_values)
-    return option_values
+    return st.one_of(_valid_value(o), option_values)
 
 
 @st.composite
@@ -677,7 +704,7 @@ def test_fuzz_gains_files_real_runs_long(system, tmp_path_factory):
     run()
 
 
-@FUNCTION_SCOPED
+@settings(FUNCTION_SCOPED, max_examples=max(5, settings.default.max_examples // 3))
 @given(cmd=verb_command_lines(verbs={"bounds"}))
 def test_fuzz_bounds_options_run_for_real(tmp_path_factory, cmd):
     """Random option values into ``lgw bounds SYSTEM`` run for real (cheap for every system):
@@ -733,6 +760,6 @@ def test_the_largest_cases_is_estimated_before_allocating(args, tmp_path, monkey
 
 def test_optimal_tf_beyond_the_propellant_names_the_feasible_interval():
     """--tf 9999 used to say "must be >= 13.667 s"; it is too long, not too short."""
-    r = run_lgw(["optimal", "mars", "--tf", "9999", "--n", "20", "--no-replay"])
+    r = run_lgw(["optimal", "mars", "--tf", "9999", "--n", "10", "--no-replay"])
     assert_one_error(r)
     assert "--tf" in r.stderr and "must be <=" in r.stderr and "propellant" in r.stderr
