@@ -205,3 +205,18 @@ def test_ctrl_c_exits_130_and_writes_nothing(args, tmp_path):
     assert "interrupted" in err and "Traceback" not in err, err[-1000:]
     assert not out.exists()
     assert [p.name for p in tmp_path.iterdir()] == []
+
+
+@pytest.mark.parametrize("system", ["mars", "lunar", "eros"])
+def test_plot_location_is_checked_before_the_work(system, char_device, tmp_path):
+    """--plot naming a device, or a folder holding other files, is refused before any work
+    (nothing flown, nothing written)."""
+    busy = tmp_path / "busy"
+    busy.mkdir()
+    (busy / "mine.txt").write_text("not lgw's")
+    for target in (char_device, busy):
+        r = run_lgw(["simulate", system, "--plot", str(target)])
+        assert_one_error(r)
+        assert "--plot" in r.stderr, r.stderr
+    assert _kind(char_device) == stat.S_IFCHR
+    assert [p.name for p in busy.iterdir()] == ["mine.txt"]
