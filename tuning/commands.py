@@ -153,6 +153,8 @@ def run(system: System, verb: str, mod: Any, opts: Any) -> int:
     gains = getattr(job, "gains", None)
     if gains is not None:
         head.update(system.gains_module().document(gains))
+    else:  # every document carries gains: a job that flies none (optimal) says null, a
+        head["gains"] = None  # tuner puts the gains it designed in its document
     doc = {**head, **outcome.document}
     if notes:
         doc["library_warnings"] = notes

@@ -184,7 +184,7 @@ def field(t: float, X: np.ndarray, ctx: Context, outputs: bool = False):
     # the lumped disturbance of (22b), d_o = e_v' - B0 u_o = e_v' + u_o/m, along the run
     Vd_dot = simplified_rhs(t, rs, ctx.ref.a1, ctx.ref.a2, ctx.ref.a3)[1:4]
     d_o = (ydot[3:6] - Vd_dot[:, None]) + (T * n_act - unorm) / m
-    out = {"eh": eh, "ev": ev, "d_orbit": d_o, "eq": eQ, "ew": ew, "thrust": T,
+    out = {"eh": eh, "ev": ev, "d_orbit": d_o, "eq": eQ, "ew": ew, "thrust": T, "force": F,
            "thrust_cmd": np.linalg.norm(uco + unorm, axis=0), "torque": M, "torque_cmd": Mc,
            "orbit_saturated": np.linalg.norm(uco + unorm, axis=0) >= o.thrust_max,
            "torque_saturated": np.any(np.abs(Mc) >= o.torque_max, axis=0),

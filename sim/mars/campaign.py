@@ -71,6 +71,9 @@ def table1_state() -> States:
     return R0[None].copy(), V0[None].copy(), np.array([M0])
 
 
+M0_MAX = 1e9  # kg: m0 x 2.2e-16 x the steps of a run stays below a gram of fuel
+
+
 def read_states_csv(path: str | Path) -> States:
     """Read explicit initial states: a header with columns rx, ry, rz, vx, vy, vz, m (any order,
     extra columns ignored), one case per row; SI units (``lgw.theory.inputs.read_csv_columns``:
@@ -78,10 +81,12 @@ def read_states_csv(path: str | Path) -> States:
     name = "--initial-states"
     cols = read_csv_columns(path, name, CSV_COLUMNS)
     data = np.column_stack([cols[c] for c in CSV_COLUMNS])
-    bad = np.flatnonzero(data[:, 6] <= 0)
+    bad = np.flatnonzero(~((data[:, 6] > 0) & (data[:, 6] <= M0_MAX)))
     if bad.size:
-        raise ParameterError(f"{name} row {bad[0] + 2} column m", data[bad[0], 6],
-                             "must be > 0 (kg)")
+        raise ParameterError(f"{name} row {bad[0] + 2} column m", float(data[bad[0], 6]),
+                             f"must be in (0, {M0_MAX:g}] kg (above, the propellant burnt "
+                             "is lost in the rounding of the mass: 1e30 kg saturated at 50 kN "
+                             "for 120 s would show 0 kg of fuel)")
     return data[:, :3], data[:, 3:6], data[:, 6]
 
 

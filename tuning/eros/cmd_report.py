@@ -63,5 +63,11 @@ def plan(opts: Options, system: Any) -> ReportJob:
     from lgw.tuning.eros.gainset import resolve
 
     g = resolve(opts.gains)  # validated before anything is written
+    if opts.sim:
+        from lgw.theory.eros import parameters as P
+        from lgw.tuning.eros.cmd_simulate import case_bytes
+        from lgw.tuning.io import check_memory
+
+        check_memory("--cases", opts.cases, case_bytes(P.T_SCENARIO, P.DT_SAMPLE))
     return ReportJob("lgw.tuning.eros.cmd_report:parts",
                      Inputs(g, opts.sim, opts.cases, opts.seed), opts.out is not None)

@@ -28,6 +28,14 @@ OUTCOME_NOTE = ("one per case, the first that happened: surface_contact (a sampl
 COLUMNS = (("t_reach_max", "reach s"), ("t_track_all", "tracked s"), ("iae", "IAE m"),
            ("u_peak", "peak m/s^2"), ("effort", "effort m/s"), ("chatter", "TV(u) m/s^2"))
 COUNTED = ("tracked", "horizon")  # outcomes whose cases enter the statistics
+MAX_SAMPLES = 10**8  # per case: t_max/dt beyond this would run for hours (a mistyped --dt)
+
+
+def case_bytes(t_max: float, dt: float) -> float:
+    """Memory one case of a run takes (bytes, an estimate): the histories of
+    ``lgw.sim.eros.batch.Result`` (e, ed, s, u: 12 float64 per sample) and as much again for
+    the metrics computed from them."""
+    return 2 * 12 * 8 * (t_max / dt + 2)
 
 
 @dataclass(frozen=True)
@@ -61,11 +69,15 @@ class Options(Options):
                            "does not apply with --initial-states (the file gives the cases)")
         self.refuse_unless(self.cases is not None, "seed", "only applies with --cases (the "
                            "scenario and a states file draw nothing)")
-        if self.dt > self.t_max:
-            from lgw.theory.errors import ParameterError
+        from lgw.theory.errors import ParameterError
 
+        if self.dt > self.t_max:
             raise ParameterError("--dt", self.dt, f"must be <= --t-max = {self.t_max} s (at "
                                  "least one sample)")
+        if self.t_max / self.dt > MAX_SAMPLES:
+            raise ParameterError("--dt", self.dt, f"gives t_max/dt = {self.t_max / self.dt:.3g} "
+                                 f"samples per case; at most {MAX_SAMPLES:.0e} (raise --dt or "
+                                 "lower --t-max)")
 
 
 def inputs(opts: Options) -> list[Path]:
@@ -151,6 +163,7 @@ def plan(opts: Options, system: Any) -> SimulateJob:
     from lgw.sim.eros.campaign import offsets
     from lgw.theory.eros import parameters as P
     from lgw.tuning.eros.gainset import resolve
+    from lgw.tuning.io import check_memory
 
     g = resolve(opts.gains)
     variants = SL.VARIANTS if opts.law == "all" else (SL.parse_variant(opts.law),)
@@ -160,11 +173,16 @@ def plan(opts: Options, system: Any) -> SimulateJob:
         from lgw.tuning.eros.options import read_offsets_csv
 
         states, source = read_offsets_csv(opts.initial_states), str(opts.initial_states)
+        check_memory("--initial-states", len(states[0]), case_bytes(opts.t_max, opts.dt))
     elif opts.cases is None:
         states = (P.SCENARIO_OFFSET[None], P.SCENARIO_VOFFSET[None], np.zeros(1))
         source = "scenario"
     else:
+        check_memory("--cases", opts.cases, case_bytes(opts.t_max, opts.dt))
         states, source = offsets(opts.cases, opts.seed), "monte-carlo"
+    if opts.cases is None and opts.initial_states is None:
+        check_memory("--t-max", 1, case_bytes(opts.t_max, opts.dt), "the case's histories "
+                     f"at dt = {opts.dt:g} s", value=opts.t_max)
     settings = {"t_max": opts.t_max, "dt": opts.dt, "gravity": opts.gravity,
                 "disturbance": opts.disturbance, "cubic": opts.cubic,
                 "cases": len(states[0]), "source": source,

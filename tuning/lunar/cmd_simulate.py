@@ -19,6 +19,10 @@ from lgw.tuning.spec import Options, option
 from lgw.tuning.system import Job, Outcome
 
 PRINTED_CASES = 20  # cases listed on the terminal (all in --json / --out)
+RECORD_S = 0.1  # s between the records a case keeps (SimulateJob: record_every)
+RECORD_BYTES = 8 * 100  # per record and case: 30 states and the output signals, float64
+MAX_STEPS = 10**8  # per case: beyond this a run would take hours (a mistyped --dt)
+T_END_MAX = 400.0  # s, above the reference's t_f (~276 s): the default horizon, for the estimate
 
 
 def random_cases(n: int, seed: int):
@@ -63,7 +67,7 @@ class Options(Options):
     thrust_max: float | None = V.thrust_max(None, "engine thrust limit T_max of (24) "
                                             "[default: the paper's]")
     dt: float | None = V.dt(None, 0.1, "RK4 step (<= 0.1 s: RK4 stability with F2 = 20) "
-                            "[default: the documented choice]")
+                            "[default: the documented choice]", probe=0.02)
     t_max: float | None = V.t_max(None, "end time", hi=1e5)
     json: bool = V.json_flag()
     out: Path | None = V.out_dir("summary.json (the --json document) and section5.png")
@@ -77,6 +81,14 @@ class Options(Options):
           "draws nothing)")
         r(self.failure != "none", "t_fail", "does not apply with --failure none")
         r(self.failure != "none", "ta", "does not apply with --failure none")
+        if self.dt is not None:
+            t_end = self.t_max if self.t_max is not None else T_END_MAX
+            if t_end / self.dt > MAX_STEPS:
+                from lgw.theory.errors import ParameterError
+
+                raise ParameterError("--dt", self.dt, f"gives {t_end / self.dt:.3g} RK4 steps "
+                                     f"per case; at most {MAX_STEPS:.0e} (raise --dt or lower "
+                                     "--t-max)")
 
 
 @dataclass(frozen=True)
@@ -160,5 +172,9 @@ def plan(opts: Options, system: Any) -> SimulateJob:
     if opts.cases is None:
         states = (np.full(1, P.DH0), P.DV0[:, None], P.Q0[:, None])
     else:
+        from lgw.tuning.io import check_memory
+
+        t_end = opts.t_max if opts.t_max is not None else T_END_MAX
+        check_memory("--cases", opts.cases, (t_end / RECORD_S + 2) * RECORD_BYTES)
         states = random_cases(opts.cases, opts.seed)
     return SimulateJob(g, run, states, opts.plot is not None, opts.out is not None)

@@ -28,7 +28,7 @@ class Options(ReportOptions):
                                   "Table II campaign, settling against s1x(0) beside the "
                                   "bounds as Fig. 6, thrust against time, s1-s2 phase "
                                   "portraits; ~10 s) [default: as --sim]",
-                                  secondary="--no-figures", probe=True)
+                                  secondary="--no-figures", probe=False)
     tuned: tuple = option("--tuned", FILE, (), "tuned gains file(s) for the comparison "
                           "[default: the shipped one]; repeatable", multiple=True,
                           probe=V.NO_PROBE)
@@ -37,6 +37,9 @@ class Options(ReportOptions):
         super().check()
         self.refuse_unless(self.out is not None, "figures", "needs --out (figures are "
                            "written beside the report)")
+        self.refuse_unless(self.out is not None, "sim", "only applies with --out (the "
+                           "comparison is a section of the written report; --json prints "
+                           "the claims, which do not depend on it)")
         self.refuse_unless(self.out is not None and self.sim, "tuned",
                            "needs --out and --sim (the tuned sets fly in the comparison)")
 

@@ -38,7 +38,7 @@ from lgw.theory.mars.parameters import (
 )
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
-from lgw.tuning.io import Stream, json_stream
+from lgw.tuning.io import Stream, available_memory, json_stream
 from lgw.tuning.options import Number, choice
 from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
@@ -286,18 +286,6 @@ def check_memory(n: int) -> None:
         raise ParameterError("--cases", n, f"needs about {need / 2**30:.1f} GiB for the "
                              f"per-case results; this machine has {avail / 2**30:.1f} GiB "
                              "available (split the campaign, or use --scheduler)")
-
-
-def available_memory() -> int | None:
-    """Available memory in bytes (Linux /proc/meminfo), or None when unknown."""
-    try:
-        with open("/proc/meminfo") as f:
-            for line in f:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
 
 
 def fig6(gains: Any, *, law: str = "corrected", dt: float | None = None,

@@ -168,8 +168,8 @@ class CorrectedTuneJob(Job):
         header = (f"lgw tune mars: tf = {req.tf:g} s, thrust_max = {req.thrust_max:g} N "
                   f"({req.limit}), bound = {req.bound}, envelope = {env.name}")
         text = gains_file_text(res.gains, cert, header)
-        return Outcome({"feasible": True, "tuned_gains": res.gains.to_dict(),
-                        "certificate": cert},
+        return Outcome({**res.gains.to_dict(), "feasible": True,
+                        "tuned_gains": res.gains.to_dict(), "certificate": cert},
                        render=lambda con: _render_corrected(con, res, req, env, cert, note),
                        files={"gains.toml": text})
 
@@ -241,7 +241,8 @@ class BoundedTuneJob(Job):
         header = (f"lgw tune mars --law {law}: tf = {tf:g} s, thrust_max = "
                   f"{req.thrust_max:g} N ({req.limit}), envelope = {env.name}")
         text = bounded_gains_file_text(res.gains, cert, header)
-        return Outcome({"feasible": True, "certificate": DB._plain(cert)},
+        return Outcome({"gains": {"law": law, **res.gains.to_dict()}, "feasible": True,
+                        "certificate": DB._plain(cert)},
                        render=lambda con: _render_bounded(con, res, law),
                        files={"gains.toml": text})
 

@@ -21,10 +21,10 @@ SYSTEM = System(
                        "limit, with a certificate"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
-        "compare": Legacy(f"{_M}.cmd_compare", "the paper's Part 1 comparison on Table I "
-                          "(table, JSON, figure)"),
-        "optimal": Legacy(f"{_M}.cmd_optimal", "the lossless-convexification fuel-optimal "
-                          "baseline"),
+        "compare": Verb(f"{_M}.cmd_compare", "the paper's Part 1 comparison on Table I "
+                        "(table, JSON, figure)"),
+        "optimal": Verb(f"{_M}.cmd_optimal", "the lossless-convexification fuel-optimal "
+                        "baseline"),
         "warmup": NotApplicable("pending"),
     },
 )
