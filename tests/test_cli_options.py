@@ -32,7 +32,7 @@ import pytest
 from lgw.theory.errors import ParameterError
 from lgw.tuning.options import Number
 from lgw.tuning.spec import NO_PROBE, Options, fingerprint, option, option_fields, probe_value
-from lgw.tuning.system import VERBS, Job, Legacy, NotApplicable, Verb, all_systems
+from lgw.tuning.system import VERBS, Job, NotApplicable, Verb, all_systems
 from lgw.tuning.vocabulary import PROBE_GAINS
 
 from tests.test_cli_conventions import assert_one_error, run_lgw
@@ -46,6 +46,14 @@ def _states_csv(columns: str, row: str) -> Callable[[Path], Path]:
     def write(folder: Path) -> Path:
         p = Path(folder) / "probe_states.csv"
         p.write_text(f"{columns}\n{row}\n")
+        return p
+    return write
+
+
+def _envelope_toml(var: str, lo: float, hi: float) -> Callable[[Path], Path]:
+    def write(folder: Path) -> Path:
+        p = Path(folder) / "probe_envelope.toml"
+        p.write_text(f'[envelope]\nname = "probe"\n{var} = [{lo}, {hi}]\n')
         return p
     return write
 
@@ -65,6 +73,9 @@ RESOURCE_PROBES: dict[tuple[str, str, str], Any] = {
                                                           "5,-4,3,0.1,0.2,-0.1"),
     ("simulate", "mars", "--scheduler"): "tcp://127.0.0.1:8786",
     ("report", "mars", "--tuned"): _tuned_file,
+    ("verify", "mars", "--envelope"): _envelope_toml("rx", -1000.0, -500.0),
+    ("verify", "lunar", "--envelope"): _envelope_toml("x1", 10.0, 20.0),
+    ("verify", "eros", "--envelope"): _envelope_toml("ex", 1.0, 2.0),
 }
 
 # Where an option refused alone applies: field -> value set together with it (and in the
@@ -262,12 +273,7 @@ def _commands() -> list[Any]:
             v = s.verbs.get(verb)
             if v is None or isinstance(v, NotApplicable):
                 continue
-            marks = []
-            if isinstance(v, Legacy):
-                marks.append(pytest.mark.skip(reason=f"{verb} {s.name} is still a Legacy "
-                                              "click command (no options object to probe); "
-                                              "it joins this test when it becomes a Verb"))
-            params.append(pytest.param(verb, s.name, id=f"{verb}-{s.name}", marks=marks))
+            params.append(pytest.param(verb, s.name, id=f"{verb}-{s.name}"))
     return params
 
 
@@ -335,11 +341,11 @@ def test_execution_options_change_the_outcome(system, tmp_path):
 
 
 def test_every_verb_is_probed():
-    """The registry's Verbs are all in COMMANDS (only Legacy ones are skipped, visibly)."""
+    """The registry's Verbs are all in COMMANDS."""
     ids = {p.id for p in COMMANDS}
     for s in all_systems():
         for verb, v in s.verbs.items():
-            if isinstance(v, Verb | Legacy):
+            if isinstance(v, Verb):
                 assert f"{verb}-{s.name}" in ids
 
 

@@ -335,7 +335,7 @@ def test_fuzz_simulate_real_flights_few_cases(tmp_path_factory, rows, extra):
 from collections import Counter, defaultdict  # noqa: E402
 
 from lgw.tuning.spec import option_fields  # noqa: E402
-from lgw.tuning.system import Legacy, NotApplicable, Verb, all_systems  # noqa: E402
+from lgw.tuning.system import NotApplicable, Verb, all_systems  # noqa: E402
 
 ALLOWED_EXIT = {0, 2, 3, 4, 130}
 FUZZ_COUNTS: dict[str, Counter] = defaultdict(Counter)
@@ -437,8 +437,6 @@ def _verb_commands() -> list[tuple[str, str, object]]:
 
 
 VERB_COMMANDS = _verb_commands()
-LEGACY = sorted(f"{verb} {s.name}" for s in all_systems() for verb, v in s.verbs.items()
-                if isinstance(v, Legacy))
 NOT_APPLICABLE = sorted(f"{verb} {s.name}" for s in all_systems()
                         for verb, v in s.verbs.items() if isinstance(v, NotApplicable))
 
@@ -650,12 +648,11 @@ def test_fuzz_bounds_eros_runs_for_real(tmp_path_factory, data):
 
 
 def test_every_verb_is_fuzzed():
-    """Every Verb is in the fuzz (Legacy verbs are fuzzed by their own tests until they move;
-    not-applicable ones only refuse)."""
+    """Every Verb is in the fuzz (not-applicable ones only refuse)."""
     assert {(v, s) for v, s, _ in VERB_COMMANDS} == {
         (verb, s.name) for s in all_systems() for verb, v in s.verbs.items()
         if isinstance(v, Verb)}
-    print(f"\nfuzzed verbs: {len(VERB_COMMANDS)}; Legacy (own tests): {', '.join(LEGACY)}; "
+    print(f"\nfuzzed verbs: {len(VERB_COMMANDS)}; "
           f"not applicable: {len(NOT_APPLICABLE)}")
 
 

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 from lgw.tuning import schemas as S
-from lgw.tuning.system import Legacy, NotApplicable, Verb, all_systems
+from lgw.tuning.system import NotApplicable, Verb, all_systems
 
 from tests.test_cli_conventions import run_lgw
 
@@ -47,6 +47,10 @@ RUNS = {
     ("report", "lunar"): [(["--no-sim"], 0, None, (SLOW,))],
     ("report", "mars"): [([], 0, None, (SLOW,))],
     ("report", "eros"): [(["--no-sim"], 0, None, (SLOW,))],
+    ("verify", "lunar"): [(["--examples", "3", "--min-cases", "1"], 0, None, ())],
+    ("verify", "eros"): [(["--examples", "3", "--min-cases", "1"], 0, None, ())],
+    ("verify", "mars"): [(["--examples", "2", "--min-cases", "1", "--claim", "reaching-16"],
+                          0, None, (SLOW,))],
     ("compare", "mars"): [(["--law", "bounded", "--dist-amplitude", "1", "--n", "20"], 0,
                            "compare.json", (SLOW,))],
 }
@@ -59,14 +63,7 @@ def _verbs() -> list[tuple[str, str, object]]:
 
 def _cases() -> list[object]:
     out = []
-    for verb, system, v in _verbs():
-        if isinstance(v, Legacy):
-            out.append(pytest.param(verb, system, [], 0, None, id=f"{verb}-{system}",
-                                    marks=pytest.mark.skip(reason=f"{verb} {system} is still "
-                                                           "a Legacy command: its document "
-                                                           "gets a schema when it becomes a "
-                                                           "Verb")))
-            continue
+    for verb, system, _v in _verbs():
         for i, (args, code, file, marks) in enumerate(RUNS.get((verb, system), [])):
             out.append(pytest.param(verb, system, args, code, file,
                                     id=f"{verb}-{system}-{i}", marks=list(marks)))
@@ -85,7 +82,7 @@ def test_schemas_are_valid_draft_2020_12():
 
 def test_every_verb_has_a_schema_and_runs_here():
     """Each Verb of the registry has its schema file and at least one run above; each schema
-    belongs to a Verb (Legacy verbs get theirs when they move to the shared command)."""
+    belongs to a Verb."""
     verbs = {(verb, system) for verb, system, v in _verbs() if isinstance(v, Verb)}
     names = set(S.names())
     missing = sorted(f"{v}.{s}" for v, s in verbs if f"{v}.{s}" not in names)

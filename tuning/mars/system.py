@@ -1,6 +1,6 @@
 """Seed 000 (Mars powered descent, fixed-time multiple sliding surfaces) as a ``System``."""
 
-from lgw.tuning.system import Legacy, NotApplicable, System, Verb
+from lgw.tuning.system import NotApplicable, System, Verb
 
 _M = "lgw.tuning.mars"
 
