@@ -9,8 +9,9 @@ The envelope (``Envelope``; defaults ``lgw.sim.lunar.parameters.MC_*``, chosen a
   thrust left    T_a uniform in [ta_lo, ta_hi] (the paper: 0.7);
   height error   uniform in [dh_lo, dh_hi] m  (the paper: 100 m);
   velocity error uniform in [-dv_i, dv_i] m/s on axis i (the paper: [2, 3, 5]);
-  attitude error a rotation of up to att_deg about a uniformly random axis (the paper: 53.1
-                 deg about x), body rates 0 (the paper's).
+  attitude error a rotation of up to att_deg about a uniformly random axis, or about the
+                 body x axis (the thrust axis: a roll, no pointing error) with
+                 att_axis = "x" (the paper: 53.1 deg about x), body rates 0 (the paper's).
 What is drawn: "all", "states" (the failure as the run options give it) or "failure" (the
 Section 5 initial errors).  Each case draws from its own child of SeedSequence(seed), so a
 case's draw does not depend on the number of cases.
@@ -62,6 +63,7 @@ class Envelope:
     dv: tuple[float, float, float] = (SP.MC_DV, SP.MC_DV, SP.MC_DV)
     att_deg: float = SP.MC_ATT_DEG
     name: str = "campaign"
+    att_axis: str = "random"
 
     def __post_init__(self) -> None:
         def box(name: str, lo: float, hi: float, vmin: float, vmax: float) -> None:
@@ -77,20 +79,23 @@ class Envelope:
         for k, x in enumerate(self.dv):
             box(f"dv[{k}]", 0.0, x, 0.0, 1e3)
         box("att_deg", 0.0, self.att_deg, 0.0, 180.0)
+        if self.att_axis not in ("random", "x"):
+            raise ParameterError("envelope.att_axis", self.att_axis, "random or x")
 
     def to_dict(self) -> dict[str, Any]:
         return {"name": self.name, "t_fail_fraction_of_tf": list(self.t_fail_fraction),
                 "ta": list(self.ta),
                 "dh_m": list(self.dh), "dv_half_width_m_s": list(self.dv),
-                "attitude_error_deg": self.att_deg}
+                "attitude_error_deg": self.att_deg, "attitude_error_axis": self.att_axis}
 
 
 # the paper's Section 5 scenario as an envelope: its failure exactly (t_f / 2, T_a = 0.7), its
 # initial errors as the corner of a box (height error within +-100 m, velocity error within
-# +-[2, 3, 5] m/s, attitude error up to its 53.13 deg)
+# +-[2, 3, 5] m/s, attitude error a roll about the thrust axis of up to its 53.13 deg)
 SECTION5 = Envelope(t_fail_fraction=(0.5, 0.5), ta=(P.T_A, P.T_A), dh=(-P.DH0, P.DH0),
                     dv=tuple(float(x) for x in P.DV0),
-                    att_deg=float(np.degrees(2 * np.arccos(P.Q0[0]))), name="section5")
+                    att_deg=float(np.degrees(2 * np.arccos(P.Q0[0]))), name="section5",
+                    att_axis="x")
 CAMPAIGN = Envelope()
 ENVELOPES = {"section5": SECTION5, "campaign": CAMPAIGN}
 
@@ -131,9 +136,12 @@ def draw(n: int, seed: int, tf: float, opts: RunOptions, env: Envelope = Envelop
     if states:
         dh = env.dh[0] + (env.dh[1] - env.dh[0]) * u[:, 0]
         dv = (np.asarray(env.dv) * (2 * u[:, 1:4] - 1)).T
-        axis = np.stack([np.cos(2 * np.pi * u[:, 4]) * np.sqrt(1 - (2 * u[:, 5] - 1) ** 2),
-                         np.sin(2 * np.pi * u[:, 4]) * np.sqrt(1 - (2 * u[:, 5] - 1) ** 2),
-                         2 * u[:, 5] - 1])
+        if env.att_axis == "x":
+            axis = np.tile([[1.0], [0.0], [0.0]], (1, n))
+        else:
+            axis = np.stack([np.cos(2 * np.pi * u[:, 4]) * np.sqrt(1 - (2 * u[:, 5] - 1) ** 2),
+                             np.sin(2 * np.pi * u[:, 4]) * np.sqrt(1 - (2 * u[:, 5] - 1) ** 2),
+                             2 * u[:, 5] - 1])
         ang = np.radians(env.att_deg) * u[:, 6]
         Q0 = np.vstack([np.cos(ang / 2), np.sin(ang / 2) * axis])
     else:
