@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from click.testing import CliRunner
 from lgw.tuning.commands import make_command
 from lgw.tuning.eros import compare as C
@@ -26,7 +27,9 @@ def test_rankings_follow_the_numbers():
     assert not got[("t_track_all", "tanh")]["holds"]
 
 
+@pytest.mark.slow
 def test_cli_six_variants_with_printed_numbers():
+    """12 runs of 15 s (RK4 and the dopri5 reference at 1e-10 for six variants)."""
     cmd = make_command(get_system("eros"), "compare")
     r = CliRunner().invoke(cmd, ["--json"])
     assert r.exit_code == 0, r.output

@@ -74,6 +74,9 @@ def test_cli_campaign_streams_cases_with_statistics(tmp_path):
                                        (["--dispersion", "states"], "--dispersion"),
                                        (["--envelope", "certificate"], "--envelope")])
 def test_campaign_options_refused_where_they_do_not_apply(args, flag):
+    from tests.test_cli_conventions import assert_one_error, run_lgw
+
     extra = [] if flag in ("--dispersion", "--envelope") else ["--cases", "2"]
-    r = CliRunner().invoke(simulate_cmd, [*extra, *args])
-    assert r.exit_code == 2 and flag in r.output, r.output
+    r = run_lgw(["simulate", "lunar", *extra, *args])
+    assert_one_error(r)
+    assert flag in r.stderr

@@ -80,28 +80,24 @@ def test_saturated_time_stops_with_the_case():
 
 
 @pytest.mark.slow
-def test_section5_against_a_tight_adaptive_reference():
-    """The default RK4 run against solve_ivp (DOP853) of the same compiled vector field on the
-    first 40 s (before the loop starts sliding on z2 = 0, where an adaptive step cannot pass
-    the relay of (7)) and against the kernel's dopri5 at rtol 1e-8 on the whole run."""
+@pytest.mark.parametrize("pointing", ["coupled", "ideal"])
+def test_section5_against_solve_ivp(pointing):
+    """The default RK4 run against scipy's solve_ivp (DOP853, rtol = atol = 1e-6) of the same
+    compiled vector field over the whole run (~3.7 M evaluations, ~10 min: the adaptive step
+    resolves every switch of the relay of (7) once the loop slides on z2 = 0)."""
     from lgw.sim.lunar.batch import simulate, solve_ivp_compiled
     from lgw.sim.lunar.scenario import case_numbers
 
-    for pointing in ("coupled", "ideal"):
-        o = RunOptions(thrust_pointing=pointing, t_end=40.0)
-        ctx, X0 = section5_case(opts=o)
-        c = simulate(ctx, X0, record=False).cases
-        sol = solve_ivp_compiled(ctx, X0[:, 0], rtol=1e-10, atol=1e-10)
-        assert sol.status == 0
-        assert np.max(np.abs(c["y_end"][0, :7] - sol.y[:7, -1])) < 1e-3
-        full = RunOptions(thrust_pointing=pointing)
-        ctx, X0 = section5_case(opts=full)
-        a = case_numbers(simulate(ctx, X0, record=False).cases, ctx)
-        b = case_numbers(simulate(ctx, X0, method="dopri5", rtol=1e-8, atol=1e-8,
-                                  record=False, max_steps=20_000_000, max_step=0.1).cases,
-                         ctx)
-        for key in ("eh_final_m", "ev_final_norm_m_s"):
-            assert abs(a[key] - b[key]) <= 0.01 * max(abs(b[key]), 0.01), (pointing, key, a, b)
+    ctx, X0 = section5_case(opts=RunOptions(thrust_pointing=pointing))
+    a = case_numbers(simulate(ctx, X0, record=False).cases, ctx)
+    sol = solve_ivp_compiled(ctx, X0[:, 0], rtol=1e-6, atol=1e-6)
+    assert sol.status == 0
+    rs = ctx.ref.state(sol.t[-1])
+    ref = {"eh_final_m": sol.y[0, -1] - rs[0],
+           "ev_final_norm_m_s": float(np.linalg.norm(sol.y[3:6, -1] - rs[1:4]))}
+    c = CV.compare(a, ref, SP.DT, 0.0, "completed", "completed",
+                   {k: CV.QUOTED[k] for k in ref})
+    assert c.converged, [x.to_dict() for x in c.checks]
 
 
 def test_campaign_dt_is_a_documented_choice():

@@ -98,7 +98,7 @@ def test_shipped_design_is_a_tuned_file_every_loader_reads():
 def test_shipped_design_against_a_fresh_campaign():
     """The tuned set cross-checked by a fresh campaign (a seed the tuner never used): every
     promise of its certificate holds, the proven ones recomputed."""
-    checks = D.check_certificate(load(SHIPPED), cases=6, seed=98765)
+    checks = D.check_certificate(load(SHIPPED), cases=4, seed=98765)
     bad = [c.to_dict() for c in checks if not c.holds]
     assert not bad, bad
     assert {c.evidence for c in checks} == {"proven", "sampled"}
