@@ -112,3 +112,12 @@ def test_a_false_promise_is_caught_with_its_observed_value():
     g = _cert_gains(thrust_max_N=30000.0)  # below T_d / T_a: the proven check fails exactly
     c = D.check_certificate(g, cases=1, seed=5)[0]
     assert not c.holds and c.evidence == "proven" and c.margin < 0
+
+
+def test_tune_below_the_redundancy_is_infeasible_and_writes_nothing(tmp_path):
+    from tests.test_cli_conventions import run_lgw
+
+    out = tmp_path / "g.toml"
+    r = run_lgw(["tune", "lunar", "--thrust-max", "34000", "--out", str(out)])
+    assert r.code == 3 and not out.exists()
+    assert "34285.7" in r.stderr and "nothing written" in r.stderr

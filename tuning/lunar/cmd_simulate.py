@@ -172,7 +172,8 @@ class CampaignJob(Job):
                  for k in CP.NUMBERS}
         outcomes = {o: int(np.sum(res.outcome == j)) for j, o in enumerate(OUTCOMES)}
         conv = [c.to_dict() for c in res.convergence]
-        flags = [line for c in res.convergence for line in c.flags("campaign case")]
+        flags = [line for i, c in enumerate(res.convergence)
+                 for line in c.flags(f"campaign case {i}")]
         head = {"options": json_safe(dict(opts.__dict__)), "envelope": self.envelope.to_dict(),
                 "dispersion": self.dispersion, "seed": self.seed, "cases_n": self.cases,
                 "outcomes": outcomes, "counted": list(CP.COUNTED), "statistics": stats,
