@@ -27,6 +27,11 @@ from __future__ import annotations
 
 import numpy as np
 
+# s after the failure time from which "after the failure" is measured: the atan of (26) has a
+# half-width of 0.5 s (its argument 2t - t_f is in seconds), so at +5 s the thrust fraction is
+# within 2 % of (1 - T_a) of T_a (chosen; seed 001 says "after the failure" without a time)
+AFTER_FAILURE_S = 5.0
+
 OUTCOMES = ("completed", "surface_contact", "propellant_exhausted", "quaternion_drift",
             "nonfinite", "step_limit", "command_blown_up")
 DOMAIN_EXITS = OUTCOMES[1:4]

@@ -27,9 +27,10 @@ def _errors(res, i, sol):
 
 
 def test_section5_case_against_solve_ivp():
+    # the old default step and filter (wn dt = 0.1), where the tolerances were set
     errs = []
     for dt in (0.05, 0.025):
-        ctx, X0 = section5_case(opts=RunOptions(t_end=4.0, dt=dt))
+        ctx, X0 = section5_case(opts=RunOptions(t_end=4.0, dt=dt, cmd_wn=2.0))
         res = rk4_batch(ctx, X0, record_every=int(round(0.5 / dt)))
         sol = solve_ivp_case(ctx, X0[:, 0], res.t, rtol=1e-9, atol=1e-9)
         errs.append(_errors(res, 0, sol))
@@ -73,7 +74,7 @@ def test_surface_contact_is_located_inside_the_step():
     # 200 m above the surface, falling at 100 m/s: contact near t = 2 s, located between nodes
     g = paper_gains()
     ref = reference()
-    ctx = make_context(ref, [g], RunOptions(t_end=5.0, dt=0.05))
+    ctx = make_context(ref, [g], RunOptions(t_end=5.0, dt=0.05, cmd_wn=2.0))
     X0 = initial_state(ref, np.array([-15_000.0 + 200.0]), np.array([[0.0], [0.0], [0.0]]),
                        np.array([[1.0], [0], [0], [0]]), np.zeros((3, 1)), [g])
     X0[5] = 100.0  # w: r' = -w
@@ -92,7 +93,7 @@ def test_surface_contact_is_located_inside_the_step():
 def test_compiled_against_numpy_rk4(case):
     g = paper_gains()
     ref = reference()
-    opts = RunOptions(t_end=3.0)
+    opts = RunOptions(t_end=3.0, dt=0.05, cmd_wn=2.0)  # 60 steps: rounding stays below 1e-9
     if case == "section5":
         ctx, X0 = section5_case(opts=opts)
     else:
@@ -163,7 +164,7 @@ def test_stage_peaks_equal_the_numpy_trial_states():
     field (``closed_loop.field``) and its thrust outputs there.  Unsaturated (T_max = 1e9 N:
     saturated, the thrust is T_max at every node and stage alike), the thrust grows to the
     end, so the stages (the last step's reach t_end) ask for more than any left node."""
-    ctx, X0 = section5_case(opts=RunOptions(t_end=3.0, thrust_max=1e9))
+    ctx, X0 = section5_case(opts=RunOptions(t_end=3.0, thrust_max=1e9, dt=0.05, cmd_wn=2.0))
     res = rk4_batch(ctx, X0, record_every=1)
     c = res.cases
     assert c["peak_thrust_stages"][0] > 1.01 * c["peak_thrust"][0]

@@ -21,7 +21,8 @@ SYSTEM = System(
                          "HTML) with every claim's verdict"),
         "tune": Verb(f"{_M}.cmd_tune", "alpha, beta, p/q, k for a settling target and a "
                        "control limit, with a certificate"),
-        "compare": NotApplicable("pending"),
+        "compare": Verb(f"{_M}.cmd_compare", "the six controllers on Table 2's metrics and "
+                          "the tracking times, 15 s scenario (table, JSON, figure)"),
         "optimal": NotApplicable("pending"),
         "warmup": NotApplicable("pending"),
     },

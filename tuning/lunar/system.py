@@ -20,8 +20,10 @@ SYSTEM = System(
                          "against measured runs"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
-        "tune": NotApplicable("pending"),
-        "compare": NotApplicable("pending"),
+        "tune": Verb(f"{_M}.cmd_tune", "gains, command filter and thrust redundancy for a "
+                       "tracking target and the thrust limit with the failure, certified"),
+        "compare": Verb(f"{_M}.cmd_compare", "Section 5 with and without failure and "
+                          "saturation, ideal against coupled pointing, the filter swept"),
         "optimal": NotApplicable("pending"),
         "warmup": NotApplicable("pending"),
     },
