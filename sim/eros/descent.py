@@ -144,8 +144,9 @@ class DescentOptions:
     evaluation); controller_gravity: the controller's model (CONTROLLER_GRAVITY); the probe,
     the navigation error and the environment; the profile (t_terminal s, v_touchdown m/s,
     cubic "exact" | "printed"); t0: start time on the profile (s); t_after: horizon after
-    the reference's touchdown time (s); land_speed: the landed / crashed threshold (m/s);
-    stride: histories every stride samples (0: none)."""
+    the reference's touchdown time (s); t_max: an earlier end of the horizon (absolute, s;
+    None: none); land_speed: the landed / crashed threshold (m/s); stride: histories every
+    stride samples (0: none)."""
 
     law: str = P.DESCENT_LAW[0]
     switch: str = P.DESCENT_LAW[1]
@@ -165,6 +166,7 @@ class DescentOptions:
     cubic: str = "exact"
     t0: float = 0.0
     t_after: float = P.T_AFTER
+    t_max: float | None = None
     land_speed: float = P.LAND_SPEED_MAX
     stride: int = 1
 
@@ -176,6 +178,8 @@ class DescentOptions:
                            ("v_touchdown", "m/s"), ("t_after", "s"), ("land_speed", "m/s")):
             _positive(name, getattr(self, name), unit)
         _positive("t0", self.t0, "s", allow_zero=True)
+        if self.t_max is not None:
+            _positive("t_max", self.t_max, "s")
         for name, least in (("n_sub", 1), ("stride", 0)):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < least:
@@ -200,7 +204,8 @@ class DescentOptions:
     @property
     def t_end(self) -> float:
         """Absolute end of the horizon (s)."""
-        return self.profile().t_touchdown + self.t_after
+        end = self.profile().t_touchdown + self.t_after
+        return end if self.t_max is None else min(end, self.t_max)
 
 
 def descent_gains() -> Gains:
@@ -407,6 +412,21 @@ def touchdown_measures(pos: np.ndarray, vel: np.ndarray, contact: np.ndarray
 
 def counts(outcome: np.ndarray) -> dict[str, int]:
     return {name: int(np.sum(np.asarray(outcome) == k)) for k, name in enumerate(OUTCOMES)}
+
+
+# --- campaigns --------------------------------------------------------------------------------
+
+def dispersions(n: int, seed: int, pos: float = P.DESCENT_MC_POS, vel: float = P.DESCENT_MC_VEL
+                ) -> dict[str, np.ndarray]:
+    """A Monte Carlo campaign's per-case inputs (seeded): offsets uniform in |e_i(0)| <= pos
+    (m) and |e_i'(0)| <= vel (m/s) from the profile's start, the SRP acceleration for a
+    reflectivity uniform in SRP_CR_RANGE (the nominal SRP_ACCEL is at 1.5), the sinusoid's phase
+    and the navigation numbers' case ids 0..n-1."""
+    rng = np.random.default_rng(seed)
+    cr = rng.uniform(*P.SRP_CR_RANGE, n)
+    return {"e0": rng.uniform(-pos, pos, (n, 3)), "ed0": rng.uniform(-vel, vel, (n, 3)),
+            "srp": P.SRP_ACCEL * cr / 1.5, "case_phase": rng.uniform(0, 2 * np.pi, n),
+            "nav_ids": np.arange(n, dtype=np.int64)}
 
 
 # --- convergence -------------------------------------------------------------------------------

@@ -12,8 +12,9 @@ Plant (seed 002 (1)/(4) in the rotating body frame), state y (NY = 22):
 y = (r (3), v (3), F (3, N, held), m, g_k (3), Gamma_k (6), r_k (3)).  Gravity g(r) (code in
 Q): 0 the two-point model (2) (generated from lgw.theory.eros.gravity), 1 the polyhedron at
 every evaluation (``lgw.sim.eros.polygrav.poly_field``, Werner & Scheeres), 2 none, 3 the
-polyhedron re-evaluated at a sample instant whenever the probe is more than ``lin_step`` from
-the point of the last evaluation, and between evaluations its first-order expansion
+polyhedron re-evaluated at a sample instant whenever the probe is more than ``lin_step`` (or,
+near the body, LIN_FRAC times its distance to the surface) from the point of the last
+evaluation, and between evaluations its first-order expansion
 g_k + Gamma_k (r - r_k) with the exact gradient tensor Gamma_k (error <= 1/2 max|grad Gamma|
 |r - r_k|^2; measured by tests/eros/test_descent.py against code 1).  D(t): solar radiation
 pressure a_srp s(t) (s the Sun's direction, fixed in inertial space, so turning at -OMEGA about
@@ -83,6 +84,7 @@ SUMMARY = ("e_max", "ed_max", "iae", "saturated", "samples", "u_peak", "u_cmd_pe
            "delta_v", "nav_r_max")
 NSUM = len(SUMMARY)
 BISECT_TOL = 1e-6  # m: the contact point is located to this along the path
+LIN_FRAC = 0.1  # gravity code 3: re-evaluate within 10 % of the distance to the surface
 BISECT_MAX = 80
 
 
@@ -222,10 +224,15 @@ def sys_sample(i, k, t, y, S, C, Q, R):  # noqa: N803
     HP = R[R_POS]
     S[KCUR] = k
     if Q[Q_GRAV] == 3:
+        # re-evaluate beyond lin_step, or beyond LIN_FRAC of the distance to the surface
+        # (its lower bound from the contact monitor) near the body
+        lim = Q[Q_LIN]
+        if S[CLR] >= 0.0:
+            lim = min(lim, LIN_FRAC * max(S[CLR] - S[PATH], 0.0))
         d0 = y[0] - y[19]
         d1 = y[1] - y[20]
         d2 = y[2] - y[21]
-        if k == 0 or d0 * d0 + d1 * d1 + d2 * d2 >= Q[Q_LIN] * Q[Q_LIN]:
+        if k == 0 or d0 * d0 + d1 * d1 + d2 * d2 >= lim * lim:
             _refresh_gravity_fn(y, S, Q)  # noqa: F821
     tk = Q[Q_T0] + k * ts
     # navigation error: first-order Gauss-Markov per component, stationary from k = 0
@@ -414,7 +421,7 @@ SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY":
          "OUT": OUT, "TEV": TEV, "KCUR": KCUR, "NAV0": NAV0, "F0": F0, "G0": G0, "SV0": SV0,
          "U0": U0, "UC0": UC0, "DSC": DSC, "UP0": UP0, "EH0": EH0, "EDH0": EDH0, "PF0": PF0,
          "RUNNING": RUNNING, "CONTACT": CONTACT, "DRY": DRY, "NONFINITE": NONFINITE,
-         "BISECT_TOL": BISECT_TOL, "BISECT_MAX": BISECT_MAX,
+         "BISECT_TOL": BISECT_TOL, "LIN_FRAC": LIN_FRAC, "BISECT_MAX": BISECT_MAX,
          **{f"Q_{n}": v for n, v in zip(("LAW", "SW", "GAINS", "BREAKS", "COEF", "T0", "DT",
                                           "OMEGA", "GRAV", "CGRAV", "P1", "P2", "GM", "GRHO",
                                           "LIN", "LIMIT", "FMAX", "VE", "MDRY", "SUN", "AMP",
