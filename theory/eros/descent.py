@@ -58,15 +58,30 @@ def closest_points(p: np.ndarray, tri: np.ndarray) -> np.ndarray:
     return best
 
 
-def nearest_surface_point(p: np.ndarray) -> tuple[np.ndarray, int, float]:
-    """(point of the shape model nearest to p, its face index, distance in m)."""
+@cache
+def _faces() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The shape model's triangles (f, 3, 3), their centroids and the radius about each
+    centroid that holds the triangle (m)."""
     from lgw.theory.eros.polyhedron import eros_polyhedron
 
     E = eros_polyhedron()
-    q = closest_points(np.asarray(p, float), E.vertices[E.faces])
+    tri = E.vertices[E.faces]
+    cen = tri.mean(axis=1)
+    return tri, cen, np.linalg.norm(tri - cen[:, None], axis=2).max(axis=1)
+
+
+def nearest_surface_point(p: np.ndarray) -> tuple[np.ndarray, int, float]:
+    """(point of the shape model nearest to p, its face index, distance in m).  Only the
+    faces that can hold it are examined: a face is at least |p - c| - rho from p (c its
+    centroid, rho its radius) and the nearest is at most min |p - c| away (exact pruning)."""
+    tri, cen, rad = _faces()
+    p = np.asarray(p, float)
+    dc = np.linalg.norm(cen - p, axis=1)
+    cand = np.flatnonzero(dc - rad <= dc.min())
+    q = closest_points(p, tri[cand])
     d = np.linalg.norm(q - p, axis=1)
-    f = int(np.argmin(d))
-    return q[f], f, float(d[f])
+    j = int(np.argmin(d))
+    return q[j], int(cand[j]), float(d[j])
 
 
 def lat_lon(p: np.ndarray) -> tuple[float, float]:

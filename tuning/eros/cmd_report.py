@@ -16,7 +16,7 @@ class Options(ReportOptions):
     sim: bool = V.sim_toggle(True, "the scenario and a campaign: the paper's simulation "
                              "claims and the figures (the six variants' tracking errors, "
                              "control and chattering; the campaign's reaching and tracked "
-                             "times)")
+                             "times), and the whole descent to touchdown")
     cases: int = V.cases(100, "Monte Carlo cases for the simulation claims")
     seed: int = V.seed(1, "seed of the campaign")
 
@@ -56,6 +56,8 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
         sections += RS.table2_sections(scen, table(mc[1]), inp.cases)
         progress.stage("figures")
         sections.append(RS.figures_section(g, base, mc, inp.cases, inp.seed))
+        progress.stage("the whole descent to touchdown, six variants")
+        sections += RS.descent_sections()
     return ReportParts(claims, report_spec(g, axis_bounds(g)), sections, coverage_rows())
 
 
