@@ -410,6 +410,16 @@ def touchdown_measures(pos: np.ndarray, vel: np.ndarray, contact: np.ndarray
     return out
 
 
+def landing_margin(res: DescentResult) -> np.ndarray:
+    """Per case: land_speed - touchdown speed (m/s) for a case that touched the surface (>= 0:
+    landed, < 0: crashed by that much), -inf for a case that never touched it (propellant
+    exhausted, non-finite, step limit, horizon).  The property a verifier checks over the
+    descent's envelope (``dispersions``): every case lands (margin >= 0); a violation is
+    re-flown by ``reference_solve_descent``."""
+    m = res.options.land_speed - res.touchdown["speed"]
+    return np.where(np.isfinite(m), m, -np.inf)
+
+
 def counts(outcome: np.ndarray) -> dict[str, int]:
     return {name: int(np.sum(np.asarray(outcome) == k)) for k, name in enumerate(OUTCOMES)}
 
