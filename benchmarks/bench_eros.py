@@ -95,7 +95,7 @@ def descent(args) -> None:
     g = descent_gains()
     z = np.zeros((1, 3))
     base = DescentOptions(stride=0)
-    simulate_descent(z, z, g, replace(base, t0=base.t_end - 2.0))  # load the kernel
+    simulate_descent(z, z, g, replace(base, t0=base.profile().t_touchdown - 5.0))  # load
 
     def touch(r):
         return (float(r.t_outcome[0]), float(r.touchdown["speed"][0]), float(r.fuel[0]),

@@ -288,3 +288,19 @@ def test_whole_descent_from_table1_start_lands_at_the_site():
     assert res.t_outcome[0] == pytest.approx(ref["t_outcome"], abs=1e-3)
     assert res.touchdown["speed"][0] == pytest.approx(ref["touchdown"]["speed"], rel=1e-5)
     assert res.fuel[0] == pytest.approx(ref["fuel"], rel=1e-5)
+
+
+@pytest.mark.slow
+def test_gravity_scope_claim_is_local_and_its_verdict_follows_the_model(monkeypatch):
+    """Checked along the descent, refuted around the asteroid with a witness re-checked by
+    quadrature; move the second mass point so that the model's centre of mass is the body's
+    (the dipole gone) and the far-field step is no longer refuted."""
+    from lgw.theory.eros import claims as C
+
+    c = C.gravity_scope_claim.__wrapped__()
+    assert [s.status for s in c.steps] == ["checked", "refuted"]
+    assert c.verdict == "refuted" and c.counterexample.confirmed
+    mu = P.TWO_POINT_MU
+    monkeypatch.setattr(P, "TWO_POINT_P2", -mu * P.TWO_POINT_P1 / (1 - mu))
+    c2 = C.gravity_scope_claim.__wrapped__()
+    assert c2.steps[1].status != "refuted"

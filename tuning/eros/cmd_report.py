@@ -57,6 +57,9 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
         progress.stage("figures")
         sections.append(RS.figures_section(g, base, mc, inp.cases, inp.seed))
         progress.stage("the whole descent to touchdown, six variants")
+        from lgw.theory.eros.claims import gravity_scope_claim
+
+        claims.append(gravity_scope_claim())
         sections += RS.descent_sections()
     return ReportParts(claims, report_spec(g, axis_bounds(g)), sections, coverage_rows())
 
