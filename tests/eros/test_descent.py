@@ -304,3 +304,19 @@ def test_gravity_scope_claim_is_local_and_its_verdict_follows_the_model(monkeypa
     monkeypatch.setattr(P, "TWO_POINT_P2", -mu * P.TWO_POINT_P1 / (1 - mu))
     c2 = C.gravity_scope_claim.__wrapped__()
     assert c2.steps[1].status != "refuted"
+
+
+@pytest.mark.slow
+def test_tune_descent_lands_a_fresh_campaign():
+    """The descent design: k at or above the theory's floor and below the thrust, every design
+    and fresh case landed under the speed target."""
+    from lgw.tuning.eros.design import DescentRequest, tune_descent
+
+    req = DescentRequest(design_cases=2, fresh_cases=3)
+    res = tune_descent(req)
+    assert "gains" in res, res.get("infeasible")
+    g = res["gains"]
+    assert res["floor"]["k_floor"] <= g.k < req.thrust_max / P.PROBE_MASS
+    assert res["fresh_meets"] and res["fresh"]["landed"] == 3
+    with pytest.raises(ParameterError):
+        DescentRequest(land_speed=-1.0)

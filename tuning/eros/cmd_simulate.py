@@ -323,8 +323,10 @@ def _render_descent(con: Any, rows: list[dict[str, Any]], st: dict[str, Any]) ->
              f", {st['cases']} cases (mean/max)") + f": plant {st['gravity']}, thrust "
              f"{st['thrust_max']:g} N ({st['limit']}), nav {'on' if st['nav'] else 'off'}")
     table = []
+    spec = {"t_outcome": ".1f"}
     for r in rows:
-        cells = [fmt(r[k]["mean"]) if one else f"{fmt(r[k]['mean'])}/{fmt(r[k]['max'])}"
+        cells = [fmt(r[k]["mean"], spec.get(k, ".4g")) if one else
+                 f"{fmt(r[k]['mean'], spec.get(k, '.4g'))}/{fmt(r[k]['max'], spec.get(k, '.4g'))}"
                  for k, _ in DESCENT_COLUMNS]
         out = (r["case_records"][0]["outcome"] if one and "case_records" in r else
                ", ".join(f"{k} {v}" for k, v in r["outcomes"].items() if v))
