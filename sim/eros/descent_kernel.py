@@ -90,11 +90,6 @@ BISECT_MAX = 80
 
 # --- hooks (templates: names resolve in the generated module) --------------------------------
 
-def _inside_mesh(x0, x1, x2, Q):  # noqa: N803
-    """True if the point is inside the shape model (solid-angle sum > 2 pi)."""
-    return solid_angle_sum(x0, x1, x2, Q[Q_V], Q[Q_F]) > 2.0 * math.pi  # noqa: F821
-
-
 def _touching(x0, x1, x2, S, Q):  # noqa: N803
     """The lazy exact inside test at a step node (lgw.sim.eros.kernel._contact's rule)."""
     lo = Q[Q_LO]
@@ -113,7 +108,7 @@ def _touching(x0, x1, x2, S, Q):  # noqa: N803
         S[CLR] = -1.0
         return False
     if not (S[PATH] < S[CLR]):
-        S[ST] = 1.0 if _inside_mesh_fn(x0, x1, x2, Q) else 0.0  # noqa: F821
+        S[ST] = 1.0 if _inside_fn(x0, x1, x2, Q[Q_V], Q[Q_F]) else 0.0  # noqa: F821
         S[CLR] = _clearance_fn(x0, x1, x2, Q[Q_A], Q[Q_NRM], Q[Q_CEN], Q[Q_RAD])  # noqa: F821
         S[PATH] = 0.0
     return S[ST] != 0.0
@@ -375,7 +370,7 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
             p0 = _herm(y[0], k1[0], yn[0], k1n[0], h, mid)  # noqa: F821
             p1 = _herm(y[1], k1[1], yn[1], k1n[1], h, mid)  # noqa: F821
             p2 = _herm(y[2], k1[2], yn[2], k1n[2], h, mid)  # noqa: F821
-            if _inside_mesh_fn(p0, p1, p2, Q):  # noqa: F821
+            if _inside_fn(p0, p1, p2, Q[Q_V], Q[Q_F]):  # noqa: F821
                 hi = mid
             else:
                 lo = mid
@@ -415,7 +410,7 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
             hm[i, kk] = math.nan
 
 
-HELPERS = (_inside_mesh, _touching, _gravity, _refresh_gravity)
+HELPERS = (_touching, _gravity, _refresh_gravity)
 HOOKS = (sys_init, sys_rhs, sys_sample, sys_start, sys_step, sys_finish)
 SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY": LY, "LZ": LZ,
          "OUT": OUT, "TEV": TEV, "KCUR": KCUR, "NAV0": NAV0, "F0": F0, "G0": G0, "SV0": SV0,
@@ -439,7 +434,7 @@ def hooks_source() -> str:
     (clearance bound, one axis's control and surface), this module's helpers and hooks."""
     from lgw.sim.eros import kernel as KN
 
-    shared = (KN._clearance, KN._u_axis, KN._s_axis)
+    shared = (KN._inside, KN._clearance, KN._u_axis, KN._s_axis)
     src = [inspect.getsource(f) + "\n" for f in shared + HELPERS + HOOKS]
     inline = (KN._u_axis, KN._s_axis)
     jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True"
@@ -449,7 +444,7 @@ def hooks_source() -> str:
     return "\n".join([*(f"{k} = {v!r}" for k, v in SLOTS.items()), "", *src, *jit])
 
 
-HEADER_IMPORTS = ("from lgw.sim.eros.polygrav import poly_field, solid_angle_sum",
+HEADER_IMPORTS = ("from lgw.sim.eros.polygrav import poly_field",
                   "from lgw.sim.eros.navnoise import nav_normal")
 
 

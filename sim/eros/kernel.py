@@ -100,42 +100,21 @@ def law_functions() -> list[tuple[str, str]]:
 
 
 def law_header() -> str:
+    """The generated laws and plant terms, and the compiled solid-angle sum of the mesh."""
     from lgw.sim.codegen import VECTOR_IMPORTS
     body = []
     for name, src in law_functions():
         body += [src, f"{name} = numba.njit({name}, cache=True, error_model='numpy')", ""]
-    return "\n".join([*VECTOR_IMPORTS[1:], "", *body])
+    return "\n".join([*VECTOR_IMPORTS[1:], "from lgw.sim.eros.polygrav import solid_angle_sum",
+                      "", *body])
 
 
 # --- templates (hooks; names resolve in the generated module) --------------------------------
 
 def _inside(x0, x1, x2, V, F):
-    """Solid-angle sum of the faces seen from x (> 2 pi: inside), as
-    lgw.theory.eros.polyhedron.inside (van Oosterom & Strackee)."""
-    tot = 0.0
-    for f in range(F.shape[0]):
-        a = F[f, 0]
-        b = F[f, 1]
-        c = F[f, 2]
-        r10 = V[a, 0] - x0
-        r11 = V[a, 1] - x1
-        r12 = V[a, 2] - x2
-        r20 = V[b, 0] - x0
-        r21 = V[b, 1] - x1
-        r22 = V[b, 2] - x2
-        r30 = V[c, 0] - x0
-        r31 = V[c, 1] - x1
-        r32 = V[c, 2] - x2
-        l1 = math.sqrt(r10 * r10 + r11 * r11 + r12 * r12)
-        l2 = math.sqrt(r20 * r20 + r21 * r21 + r22 * r22)
-        l3 = math.sqrt(r30 * r30 + r31 * r31 + r32 * r32)
-        num = (r10 * (r21 * r32 - r22 * r31) + r11 * (r22 * r30 - r20 * r32)
-               + r12 * (r20 * r31 - r21 * r30))
-        den = (l1 * l2 * l3 + l1 * (r20 * r30 + r21 * r31 + r22 * r32)
-               + l2 * (r30 * r10 + r31 * r11 + r32 * r12)
-               + l3 * (r10 * r20 + r11 * r21 + r12 * r22))
-        tot += 2.0 * math.atan2(num, den)
-    return tot > 2.0 * math.pi
+    """True if x is inside the mesh: the solid-angle sum of its faces > 2 pi
+    (lgw.sim.eros.polygrav.solid_angle_sum; lgw.theory.eros.polyhedron.inside)."""
+    return solid_angle_sum(x0, x1, x2, V, F) > 2.0 * math.pi  # noqa: F821
 
 
 def _clearance(x0, x1, x2, A, NRM, CEN, RAD):
@@ -382,10 +361,10 @@ def hooks_source() -> str:
 def _key_sources() -> list[str]:
     import lgw
     from lgw.sim import codegen, integrate, kernel_cache
-    from lgw.sim.eros import kernel
+    from lgw.sim.eros import kernel, polygrav
     from lgw.theory.eros import gravity, laws
     return [lgw.__version__, *kernel_cache.source_of(codegen, integrate, kernel_cache, kernel,
-                                                     laws, gravity)]
+                                                     laws, gravity, polygrav)]
 
 
 @functools.cache
