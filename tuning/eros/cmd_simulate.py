@@ -261,7 +261,10 @@ class DescentJob(Job):
             res = simulate_descent(inp["e0"], inp["ed0"], self.gains, opts, **kw)
             progress.stage(f"{name}: convergence (RK4 step halved)")
             conv = convergence(res, inp["e0"], inp["ed0"], **kw)
-            runs[name] = res
+            if self.figures:  # case 0 again, with its histories
+                one = {k: v[:1] for k, v in kw.items()}
+                runs[name] = simulate_descent(inp["e0"][:1], inp["ed0"][:1], self.gains,
+                                              replace(opts, stride=1), **one)
             values = descent_values(res)
             touched = np.isin(res.outcome, [OUTCOMES.index(o) for o in DESCENT_COUNTED])
             row: dict[str, Any] = {"variant": name, "cases": n,
@@ -368,7 +371,7 @@ def plan_descent(opts: Options) -> DescentJob:
     nav = Navigation.typical(opts.seed) if opts.nav else Navigation()
     base = DescentOptions(dt=P.DESCENT_DT if opts.dt is None else opts.dt,
                           gravity=opts.gravity or "polyhedron", probe=probe, env=env, nav=nav,
-                          cubic=opts.cubic, t_max=opts.t_max)
+                          cubic=opts.cubic, t_max=opts.t_max, stride=0)
     if opts.initial_states is not None:
         from lgw.tuning.eros.options import read_offsets_csv
 
