@@ -320,3 +320,33 @@ def test_tune_descent_lands_a_fresh_campaign():
     assert res["fresh_meets"] and res["fresh"]["landed"] == 3
     with pytest.raises(ParameterError):
         DescentRequest(land_speed=-1.0)
+
+
+def test_report_descent_toggle_needs_the_simulations(tmp_path):
+    from tests.test_cli_conventions import assert_one_error, run_lgw
+
+    out = tmp_path / "rep"
+    r = run_lgw(["report", "eros", "--no-sim", "--no-descent", "--out", str(out)])
+    assert_one_error(r)
+    assert "--descent" in r.stderr and not out.exists()
+
+
+@pytest.mark.slow
+def test_report_descent_sections():
+    """The report's descent part: the six variants with and without navigation errors (the
+    tanh and fuzzy laws land, each converged), the fit table along the descent, the far field
+    and the four figures."""
+    from lgw.tuning.eros.report_sections import descent_sections
+
+    secs = descent_sections()
+    assert len(secs) == 5
+    for s in secs[:2]:
+        rows = {r[0]: r for r in s.rows}
+        assert len(rows) == 6 and all(r[-1] == "yes" for r in s.rows)
+        for name in ("pdsmc-tanh", "ftsmc-tanh", "fuzzy-sign", "fuzzy-tanh"):
+            assert rows[name][1] == "landed"
+    assert len(secs[2].rows) >= 10 and len(secs[3].rows) == 4
+    assert [f.file for f in secs[4].figures] == [
+        "eros_descent_trajectory.png", "eros_descent_altitude_speed.png",
+        "eros_descent_thrust.png", "eros_descent_fit_error.png"]
+    assert all(f.png.startswith(b"\x89PNG") for f in secs[4].figures)
