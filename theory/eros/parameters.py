@@ -180,5 +180,5 @@ DESCENT_MC_VEL = 0.01  # m/s
 # (lgw.sim.eros.descent_kernel, gravity code 3).  Chosen by measurement against the polyhedron
 # at every evaluation (benchmarks/bench_eros.py --descent; docs/eros.md): on the whole descent
 # 10 m moves the touchdown speed by 2e-8 relative, the fuel by 5e-7 relative and the contact
-# point by 5e-7 m, at 1/54 of the cost (3 m: 1/25, 30 m: 1/108, the same touchdown).
+# point by 5e-7 m, at 1/78 of the cost (3 m: 1/31, 30 m: 1/164, the same touchdown).
 LIN_STEP = 10.0  # m
