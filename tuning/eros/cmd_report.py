@@ -9,6 +9,7 @@ from typing import Any
 
 from lgw.tuning import vocabulary as V
 from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts
+from lgw.tuning.spec import option
 
 
 @dataclass(frozen=True)
@@ -16,7 +17,11 @@ class Options(ReportOptions):
     sim: bool = V.sim_toggle(True, "the scenario and a campaign: the paper's simulation "
                              "claims and the figures (the six variants' tracking errors, "
                              "control and chattering; the campaign's reaching and tracked "
-                             "times)")
+                             "times), and the whole descent to touchdown")
+    descent: bool = option("--descent", None, True, "with --sim: the whole descent from Table "
+                           "1's start to touchdown (six variants, with and without navigation "
+                           "errors; about a minute), its figures and claim gravity-scope",
+                           secondary="--no-descent")
     cases: int = V.cases(100, "Monte Carlo cases for the simulation claims")
     seed: int = V.seed(1, "seed of the campaign")
 
@@ -24,6 +29,8 @@ class Options(ReportOptions):
         super().check()
         self.refuse_unless(self.sim, "cases", "needs --sim (the campaign is the simulation)")
         self.refuse_unless(self.sim, "seed", "needs --sim (the campaign is the simulation)")
+        self.refuse_unless(self.sim, "descent", "needs --sim (the descent is one of the "
+                           "simulations)")
 
 
 @dataclass(frozen=True)
@@ -32,6 +39,7 @@ class Inputs:
     sim: bool
     cases: int
     seed: int
+    descent: bool = True
 
 
 def parts(inp: Inputs, progress: Any) -> ReportParts:
@@ -56,6 +64,12 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
         sections += RS.table2_sections(scen, table(mc[1]), inp.cases)
         progress.stage("figures")
         sections.append(RS.figures_section(g, base, mc, inp.cases, inp.seed))
+    if inp.sim and inp.descent:
+        progress.stage("the whole descent to touchdown, six variants")
+        from lgw.theory.eros.claims import gravity_scope_claim
+
+        claims.append(gravity_scope_claim())
+        sections += RS.descent_sections()
     return ReportParts(claims, report_spec(g, axis_bounds(g)), sections, coverage_rows())
 
 
@@ -70,4 +84,5 @@ def plan(opts: Options, system: Any) -> ReportJob:
 
         check_memory("--cases", opts.cases, case_bytes(P.T_SCENARIO, P.DT_SAMPLE))
     return ReportJob("lgw.tuning.eros.cmd_report:parts",
-                     Inputs(g, opts.sim, opts.cases, opts.seed), opts.out is not None)
+                     Inputs(g, opts.sim, opts.cases, opts.seed, opts.descent),
+                     opts.out is not None)
