@@ -21,7 +21,7 @@ from lgw.tuning.system import Job, Outcome
 
 VARIANT_NAMES = ("pdsmc-sign", "pdsmc-tanh", "ftsmc-sign", "ftsmc-tanh", "fuzzy-sign",
                  "fuzzy-tanh")  # lgw.sim.eros.laws.VARIANTS by name (tests check they agree)
-OUTCOME_NOTE = ("one per case, the first that happened: surface_contact (a sample inside the "
+OUTCOME_NOTE = ("one per case, the first that happened: crashed (a sample inside the "
                 "shape model), nonfinite (control or state NaN/inf), tracked (|e_i| <= 1 cm on "
                 "every axis to the horizon), horizon (none of these by the horizon); "
                 "t_outcome in s")

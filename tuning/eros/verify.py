@@ -29,7 +29,7 @@ Evidence: Hypothesis draws batches of 1..16 initial states from the envelope
 steers with ``target(observed/bound)`` and shrinks a violation.  A case the batched RK4 cannot
 carry (nonfinite) is re-flown alone by ``reference_solve`` (DOP853, rtol = atol = 1e-11 between
 samples); only a case neither carries is excluded, counted and shown.  A case that touches the
-shape model (``surface_contact``) is excluded too (the plant (4) has no contact: the bounds
+shape model (``crashed``) is excluded too (the plant (4) has no contact: the bounds
 say nothing about it), counted and shown.  A violation found by RK4 is re-flown by the
 reference route: confirmed there it is ``violated`` (exit 1, with the shrunk witness and a
 ready-to-paste ``lgw simulate eros --initial-states`` reproduction); not confirmed, the claim is
@@ -148,9 +148,9 @@ class Campaign:
         t_reach, t_track, outcome, by_ref = fly(e0, ed0, ph, g, mode, horizon(
             np.where(np.isfinite(tt), tt, 0.0)))
         good = (outcome != OUTCOMES.index("nonfinite")) & (
-            outcome != OUTCOMES.index("surface_contact"))
+            outcome != OUTCOMES.index("crashed"))
         reasons = {NO_INTEGRATOR: outcome == OUTCOMES.index("nonfinite"),
-                   CONTACT: outcome == OUTCOMES.index("surface_contact")}
+                   CONTACT: outcome == OUTCOMES.index("crashed")}
         for claim, obs, bnd in ((GROUPS[mode][0], t_reach, tr), (GROUPS[mode][1], t_track, tt)):
             bnd = bnd * self.scale.get(claim, 1.0)
             self.cases[claim] += len(e0)
