@@ -45,8 +45,10 @@ What is recorded per case (``BatchResult``):
     stop="t_max" also after landing); NaN if the axis never enters its band at a node.  A
     node whose command is blown up is not counted (the case ends there: at t = 0 a case
     that has landed there with such a command).  The spikes after arrival of issue 17;
-    time_saturated: node-sampled time (left-endpoint rule) with the command
-    limited on some axis, until landing; min_altitude and ground_contact (r_z < 0 before
+    time_saturated: time with the command limited (on some axis, or on the norm), until the
+    outcome: where the limit's margin (|F| before the limit minus the limit), linear between
+    the nodes, is > 0 (second order in the step; a left-endpoint count of the nodes was first
+    order); min_altitude and ground_contact (r_z < 0 before
     the outcome, a graze included), from the minimum of the cubic Hermite interpolant
     of r_z over each step (not only its nodes), up to the outcome;
   contact, contact_time, contact_point, impact_velocity (and the properties impact_speed,
