@@ -82,6 +82,18 @@ PRECEDENCE = ("below_surface", "landed", "crashed", "propellant_exhausted", "com
               "nonfinite", "step_limit")
 # outcomes that end a case at the surface (the contact record is defined for them)
 CONTACT = ("landed", "crashed")
+# The outcome class two integrators of the same case must agree on: each physical outcome is
+# its own class; the ones that say the run could not be carried on (the command or the state
+# broke down, the adaptive integrator gave up, the step drifted the quaternion) are one class,
+# "numerical", since which of them comes first is a property of the integrator, not the loop.
+NUMERICAL = ("command_blown_up", "nonfinite", "step_limit", "quaternion_drift")
+
+
+def outcome_class(name: str) -> str:
+    """The outcome's class for integrator agreement (``NUMERICAL`` or the outcome itself)."""
+    if name not in OUTCOMES:
+        raise ValueError(f"outcome {name!r} is not in the shared vocabulary lgw.sim.results")
+    return "numerical" if name in NUMERICAL else name
 
 
 def names(*wanted: str) -> tuple[str, ...]:
