@@ -117,10 +117,60 @@ class SimulateJob(Job):
             from lgw.tuning.lunar.figures import section5_png
 
             files["section5.png"] = section5_png(res)
+        progress.stage("convergence check (RK4 at dt/2)")
+        conv = convergence(self.gains, opts, self.states, sums)
+        for i, s in enumerate(sums):
+            s["converged"] = conv.case_ok.get(i)
         doc = {"options": json_safe(dict(opts.__dict__)), "reference": ref.to_dict(),
-               "outcomes": outcomes, "cases": sums}
-        return Outcome(doc, render=lambda con: _render(con, ref, opts, sums, outcomes),
-                       files=files, figures=figures)
+               "outcomes": outcomes, "cases": sums, "convergence": json_safe(conv.to_dict())}
+
+        def render(con: Any) -> None:
+            _render(con, ref, opts, sums, outcomes)
+            for line in conv.notes():
+                con.print(line, markup=False)
+
+        return Outcome(doc, render=render, files=files, figures=figures,
+                       flags=conv.flags("simulate lunar"))
+
+
+# The numbers the table prints per case, with their tolerance (lgw.sim.convergence: 1 % or
+# the quantity's resolution: 1 cm, 1 mm/s, 10 ms of saturation, 1 ms)
+QUOTED = ("eh_final_m", "ev_final_m_s", "max_abs_eh_m", "orbit_saturated_s",
+          "orbit_saturated_after_failure_s", "torque_saturated_s", "d0e_orbit_final",
+          "d0e_attitude_final", "t_outcome_s")
+ATOL = {"eh_final_m": 0.01, "ev_final_m_s": 1e-3, "max_abs_eh_m": 0.01,
+        "orbit_saturated_s": 0.01, "orbit_saturated_after_failure_s": 0.01,
+        "torque_saturated_s": 0.01, "d0e_orbit_final": 1e-6, "d0e_attitude_final": 1e-6,
+        "t_outcome_s": 1e-3}
+
+
+def convergence(gains: Any, opts: Any, states: tuple, sums: list[dict[str, Any]]) -> Any:
+    """The run's convergence record (lgw.sim.convergence): its cases (all, or an even spread
+    of a large campaign) flown again by RK4 at dt/2, every printed number compared."""
+    from dataclasses import replace
+
+    from lgw.sim.convergence import Tol, check_indices, compare_cases
+    from lgw.sim.lunar.batch import rk4_batch
+    from lgw.sim.lunar.closed_loop import initial_state, make_context
+    from lgw.sim.lunar.outcomes import case_record, json_safe
+    from lgw.sim.lunar.reference import reference
+    from lgw.sim.lunar.scenario import summarize
+
+    ref = reference()
+    idx = check_indices(len(sums))
+    dh, dv, Q0 = (np.asarray(states[0])[idx], np.asarray(states[1])[:, idx],
+                  np.asarray(states[2])[:, idx])
+    fine = replace(opts, dt=opts.dt / 2)
+    ctx = make_context(ref, [gains] * len(idx), fine)
+    X0 = initial_state(ref, dh, dv, Q0, np.zeros((3, len(idx))), [gains] * len(idx))
+    res = rk4_batch(ctx, X0, record_every=max(1, int(round(0.1 / fine.dt))))
+    check = [json_safe({**summarize(res, ctx, k).numbers, **case_record(res.cases, k)})
+             for k in range(len(idx))]
+    return compare_cases([sums[i] for i in idx], check,
+                         {k: Tol(atol=ATOL[k]) for k in QUOTED}, how="step halving",
+                         base_label=f"RK4 dt = {opts.dt:g} s",
+                         check_label=f"RK4 dt = {fine.dt:g} s", cases=idx.tolist(),
+                         total=len(sums))
 
 
 def _render(con: Any, ref: Any, opts: Any, sums: list[dict[str, Any]],
