@@ -548,7 +548,7 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
         ts2x[i, ax] = S[TX + 3 + ax]
     tsat[i] = S[TSAT]
     minalt[i] = S[ZMIN]
-    ground[i] = S[GROUND] != 0.0
+    ground[i] = S[GROUND] != 0.0 or S[CONT] != 0.0  # a graze below r_z = 0, or the contact
 
 
 HOOKS = (sys_init, sys_rhs, _sat_margin, _arrival, _impact, _ground, sys_start, sys_step,

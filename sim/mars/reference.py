@@ -320,7 +320,7 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
     y_end = y_cont.copy() if contact and stop == "landing" else sol.y[:, -1].copy()
     if exhausted and stop == "landing" and np.isnan(tl):
         y_end[6] = m_dry  # the case ended at the located crossing: exactly m_dry (as batch)
-    ground = bool(np.any(ys[2] < 0))
+    ground = bool(np.any(ys[2] < 0)) or contact
     # after arrival: on the solver's nodes and the metric grid until the case ends (after
     # landing too with stop="t_max"), before a blown-up command
     t_last = min(t_end, t_blow, t_metric if via_blow else np.inf)

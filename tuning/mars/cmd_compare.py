@@ -113,5 +113,8 @@ def command(gains_path: Path | None, tuned_paths: tuple[Path, ...],
     click.echo(format_table(report))
     click.echo(report["note"])
     click.echo(report["why"])
+    click.echo(report["convergence"].split("; UNCONVERGED")[0])
+    for line in report["convergence_flags"]:  # unconverged numbers (lgw.sim.convergence)
+        click.echo(f"warning: {line}")
     if out_dir is not None:
         click.echo(f"wrote {out_dir / 'compare.json'} and {out_dir / 'compare.png'}")
