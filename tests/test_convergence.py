@@ -104,7 +104,7 @@ def test_refinement_and_indices_helpers() -> None:
 def _doc(args: list[str]) -> dict:
     r = run_lgw(args + ["--json"])
     assert r.code == 0, r.stderr
-    return json.loads(r.out)
+    return json.loads(r.stdout)
 
 
 def test_simulate_mars_flags_an_unconverged_run_and_not_a_converged_one() -> None:
@@ -122,7 +122,7 @@ def test_simulate_mars_flags_an_unconverged_run_and_not_a_converged_one() -> Non
     assert conv["metrics"]["landing_error"]["unconverged"] > 0
     assert any(c["converged"] is False for c in bad["cases"])
     text = run_lgw(args)
-    assert text.code == 0 and "warning: simulate mars: UNCONVERGED landing_error" in text.out
+    assert text.code == 0 and "warning: simulate mars: UNCONVERGED landing_error" in text.stdout
 
 
 def test_simulate_mars_refines_a_step_dependent_outcome() -> None:
@@ -143,9 +143,9 @@ def test_simulate_carries_the_check_for_every_system(system: str) -> None:
     for rec in recs:
         assert rec["how"] == "step halving" and rec["cases_checked"] == 1
     text = run_lgw(args)
-    warned = "UNCONVERGED" in text.out
+    warned = "UNCONVERGED" in text.stdout
     assert warned == (not all(rec["converged"] for rec in recs))
-    assert "convergence: 1 of 1 cases checked" in text.out
+    assert "convergence: 1 of 1 cases checked" in text.stdout
 
 
 def test_simulate_mars_statistics_leave_out_what_cannot_be_summarised() -> None:

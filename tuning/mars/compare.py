@@ -180,7 +180,7 @@ def _flight(b: Any, thrust_max: float | None) -> tuple[dict[str, Any], tuple]:
     crashed = name == "crashed"
     pos = b.r_land[0] if landed else b.contact_point[0] if crashed else y[:3]
     vel = b.v_land[0] if landed else b.impact_velocity[0] if crashed else y[3:6]
-    nums = {"outcome": text.replace("_", " "), "fuel": float(b.fuel[0]),
+    nums = {"outcome": text.replace("_", " "), "outcome_name": name, "fuel": float(b.fuel[0]),
             "landing_time": float(b.landing_time[0]) if landed else math.nan,
             "t_end": float(b.contact_time[0]) if crashed else float(b.t_end[0]),
             "pos_error": float(np.linalg.norm(pos)), "vel_error": float(np.linalg.norm(vel)),
@@ -195,25 +195,42 @@ def _flight(b: Any, thrust_max: float | None) -> tuple[dict[str, Any], tuple]:
 
 def _closed_rows(law: str, label: str, gains: Gains, dists: list[tuple[str, float]], drag: str,
                  paper_fuel: float, thrust_max: float | None) -> tuple[list[dict], list[dict]]:
-    from lgw.sim.convergence import Tol, compare_cases
+    from lgw.sim.convergence import REFINE_HALVINGS, Tol, compare_cases
     from lgw.sim.mars.batch import simulate_batch
 
     rows, trajs = [], []
     for dist, amp in dists:
         kw = dict(law=law, disturbance=dist, dist_amplitude=amp if dist == "sin" else None,
                   drag=drag, thrust_limit=thrust_max)
-        b = simulate_batch(R0[None], V0[None], np.array([M0]), gains, record=True, **kw)
-        nums, (t, r, v, m, F) = _flight(b, thrust_max)
+        def fly(h: float, kw: dict[str, Any] = kw) -> Any:
+            return simulate_batch(R0[None], V0[None], np.array([M0]), gains, record=True,
+                                  dt=h, **kw)
+
+        # convergence (lgw.sim.convergence): the same flight at dt/2, every quoted number; an
+        # outcome that changes with the step is refined (dt/4, dt/8, ...) until two successive
+        # steps agree, and the row is that flight, marked refined
+        h = DT_DEFAULT
+        b = fly(h)
+        nums, flight = _flight(b, thrust_max)
+        half = fly(h / 2)
+        nh = _flight(half, thrust_max)[0]
+        for _ in range(REFINE_HALVINGS - 1):
+            if nh["outcome_name"] == nums["outcome_name"]:
+                break
+            h /= 2
+            b, nums, flight = half, nh, _flight(half, thrust_max)[1]
+            half = fly(h / 2)
+            nh = _flight(half, thrust_max)[0]
+        t, r, v, m, F = flight
         row = {"method": law, "label": label, "disturbance": dist, "dist_amplitude": amp,
                "landed": bool(b.landed[0]),
-               "paper_fuel": paper_fuel if dist == "none" else math.nan, **nums}
-        # convergence (lgw.sim.convergence): the same flight at dt/2, every quoted number
-        half = simulate_batch(R0[None], V0[None], np.array([M0]), gains, record=True,
-                              dt=DT_DEFAULT / 2, **kw)
-        conv = compare_cases([nums], [_flight(half, thrust_max)[0]],
-                             {k: Tol(atol=a) for k, a in QUOTED.items()}, how="step halving",
-                             base_label=f"RK4 dt = {DT_DEFAULT:g} s",
-                             check_label=f"RK4 dt = {DT_DEFAULT / 2:g} s")
+               "paper_fuel": paper_fuel if dist == "none" else math.nan, **nums,
+               "refined_dt": h if h != DT_DEFAULT else None}
+        if h != DT_DEFAULT:
+            row["outcome"] += f" (refined, dt {h:g} s)"
+        conv = compare_cases([nums], [nh], {k: Tol(atol=a) for k, a in QUOTED.items()},
+                             how="step halving", outcome_key="outcome_name",
+                             base_label=f"RK4 dt = {h:g} s", check_label=f"RK4 dt = {h / 2:g} s")
         row["converged"] = conv.converged
         row["convergence"] = conv.to_dict()
         row["convergence_flags"] = conv.flags(f"{label}, a_p {_amp_cell(row)}")
