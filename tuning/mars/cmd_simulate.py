@@ -235,6 +235,17 @@ class Fig6Job(Job):
         progress.stage("seed 000 Fig. 6: five s1x(0), flown to t_max")
         res6 = fig6(self.gains, law=self.law, dt=self.dt, eps=self.eps, t_max=self.t_max,
                     drag=self.drag)
+        # convergence (lgw.sim.convergence): the same five runs at dt/2, every printed time
+        from lgw.sim.convergence import Tol, compare_cases
+
+        half = fig6(self.gains, law=self.law, dt=res6["dt"] / 2, eps=self.eps,
+                    t_max=self.t_max, drag=self.drag)
+        conv = compare_cases(res6["rows"], half["rows"],
+                             {k: Tol(atol=1e-3) for k in ("t_s2x", "t_s1x", "landing_time")},
+                             how="step halving", outcome_key="s1x0",
+                             base_label=f"RK4 dt = {res6['dt']:g} s",
+                             check_label=f"RK4 dt = {res6['dt'] / 2:g} s")
+        res6["convergence"] = conv.to_dict()
         figures = []
         if self.want_figures:
             from lgw.theory.sections import Figure
@@ -243,8 +254,13 @@ class Fig6Job(Job):
             figures = [Figure("settling_fig6.png", "settling against s1x(0)",
                               settling_figure(res6, "Seed 000 Fig. 6: settling against "
                                               "s1x(0)"))]
-        return Outcome(dict(res6), render=lambda con: _print_fig6(res6, con),
-                       files={"fig6.json": DOCUMENT}, figures=figures)
+        def render(con: Any) -> None:
+            _print_fig6(res6, con)
+            for line in conv.notes():
+                con.print(line, markup=False)
+
+        return Outcome(dict(res6), render=render, files={"fig6.json": DOCUMENT},
+                       figures=figures, flags=conv.flags("simulate mars --fig6"))
 
 
 def plan(opts: Options, system: Any) -> Job:
