@@ -165,3 +165,22 @@ def test_simulate_mars_statistics_leave_out_what_cannot_be_summarised() -> None:
     assert s["impact_speed_mps"]["n"] == 1 and s["impact_speed_mps"]["min"] > 80
     for st in (s["fuel_kg"], s["landing_time_s"], s["impact_speed_mps"]):
         assert st["min"] <= st["mean"] <= st["max"]
+
+
+@pytest.mark.parametrize("system", [
+    "mars", pytest.param("lunar", marks=pytest.mark.slow),
+    pytest.param("eros", marks=pytest.mark.slow)])
+def test_rk4_and_dopri5_agree_on_adversarial_states(system: str) -> None:
+    """benchmarks/adversarial_agreement.py on 2000 adversarial states (seed 0): after the RK4
+    outcomes are refined, RK4 and dopri5 agree on the outcome class of at least 99 % of the
+    cases; refinement never makes it worse."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "adversarial_agreement.py"
+    spec = importlib.util.spec_from_file_location("adversarial_agreement", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    r = mod.agreement(system, 2000, 0, None)
+    assert r["after"] >= 0.99 * r["n"], r
+    assert r["after"] >= r["before"] - r["refined"], r
