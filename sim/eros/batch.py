@@ -30,10 +30,11 @@ final state.
 Outcomes (``OUTCOMES``): every case ends in exactly one, with its time (``Result.outcome``,
 ``Result.t_outcome``), the first thing that happened:
 
-  "surface_contact"  the sampled position is inside the shape model of Eros (the polyhedron of
+  "crashed"          the sampled position is inside the shape model of Eros (the polyhedron of
                      lgw.theory.eros.polyhedron; checked at every sample t_k, after a bounding-box
                      screen); time: the first such sample.  The case is frozen there (a crash:
-                     the plant (4) does not model contact).  Between samples a contact is not
+                     the plant (4) does not model contact; the shared vocabulary's name,
+                     lgw.sim.results).  Between samples a contact is not
                      located (a probe faster than ~1e5 m/s could cross the body unseen).
   "nonfinite"        the control u_k or the state became NaN / inf; time: the start t_k of the
                      sample interval that blew up (u_k itself, or an RK4 stage within it).  The
@@ -55,6 +56,7 @@ from functools import cache
 import numpy as np
 from lgw.sim.eros import laws as SL
 from lgw.sim.eros import plant as PL
+from lgw.sim.results import names as _shared_names
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros import reference as REF
 from lgw.theory.eros.gains import Gains
@@ -63,7 +65,7 @@ from scipy.integrate import solve_ivp
 
 DIST_MODES = ("known", "unknown", "none")
 ENGINES = ("kernel", "numpy")
-OUTCOMES = ("surface_contact", "nonfinite", "tracked", "horizon")
+OUTCOMES = _shared_names("crashed", "nonfinite", "tracked", "horizon")  # lgw.sim.results
 
 
 @dataclass(frozen=True)

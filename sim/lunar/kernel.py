@@ -53,7 +53,7 @@ XPKTC = 54
 XBLOWN = 55
 NX = 56
 # outcome codes (names in lgw.sim.lunar.outcomes.OUTCOMES)
-COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM, BLOWN = range(7)
+COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM, BLOWN, BELOW = range(8)
 # A delivered thrust above BLOWUP_ACCEL m0 (N; m0 the case's initial mass) is no thrust (1e5
 # m/s^2, ~10^4 g, as seed 000's lgw.sim.mars.batch.BLOWUP_ACCEL; the Section 5 case asks for
 # ~7 m/s^2): a step whose stage asks for it (or for any thrust at a mass <= 0) is far too large
@@ -529,7 +529,7 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
             return True
     code = COMPLETED  # noqa: F821
     if y[0] < R_MOON:  # noqa: F821
-        code = SURFACE  # noqa: F821
+        code = BELOW  # noqa: F821  (starts below the surface: named, not flown)
     elif y[6] <= m_dry:
         code = DRY  # noqa: F821
     elif X[43] > qtol:
@@ -627,7 +627,7 @@ SLOTS = {"PKT": PKT, "PKTC": PKTC, "PKM": PKM, "TSO": TSO, "TSA": TSA, "NENT": N
          "PKTCS": PKTCS, "TAI": TAI, "TAFT": TAFT, "TSOAF": TSOAF, "PKTCAF": PKTCAF,
          "EHMAX": EHMAX, "EVMAX": EVMAX, "EHMAXAF": EHMAXAF, "MINEQ0": MINEQ0,
          "L2BO": L2BO, "L2BA": L2BA, "XPKT": XPKT, "XPKTC": XPKTC, "XBLOWN": XBLOWN, "BLOWN": BLOWN,
-         "COMPLETED": COMPLETED,
+         "COMPLETED": COMPLETED, "BELOW": BELOW,
          "SURFACE": SURFACE, "DRY": DRY, "QUAT": QUAT, "NONFINITE": NONFINITE}
 CONSTS = {"BLOW_ACC": BLOWUP_ACCEL, "R_MOON": P.R_MOON, "MU_MOON": P.MU_MOON,
           "T_NOMINAL": P.T_NOMINAL, "ISP": P.ISP, "G0": P.G0, "ZETA": ZETA, "TINY": TINY}

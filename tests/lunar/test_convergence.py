@@ -41,7 +41,7 @@ def test_the_check_uses_the_floor_for_numbers_near_zero():
 
 def test_a_different_outcome_is_not_converged():
     a = {"eh_final_m": -1.0}
-    c = CV.compare(a, a, 0.01, 0.0025, "completed", "surface_contact")
+    c = CV.compare(a, a, 0.01, 0.0025, "completed", "crashed")
     assert not c.converged and "outcome" in c.flags()[0]
 
 
@@ -68,7 +68,7 @@ def test_saturated_time_stops_with_the_case():
 
     res = rk4_batch(ctx, X0, record_every=32)
     s = summarize(res, ctx).numbers
-    assert s["outcome"] == "surface_contact"
+    assert s["outcome"] == "crashed"
     assert s["orbit_saturated_s"] <= s["t_outcome_s"] + 1e-9
     assert s["torque_saturated_s"] <= s["t_outcome_s"] + 1e-9
     # the record-based count agrees with the kernel's per-step count once it stops at t_stop

@@ -49,7 +49,7 @@ def _pt(wn, score, score_fine=None, outcome="completed"):
 
 
 def test_bandwidth_rule_picks_the_centre_of_the_widest_robust_band():
-    pts = (_pt(1, math.inf, outcome="surface_contact"), _pt(2, 0.5), _pt(4, 3.0),
+    pts = (_pt(1, math.inf, outcome="crashed"), _pt(2, 0.5), _pt(4, 3.0),
            _pt(8, 0.4), _pt(16, 0.6), _pt(32, 0.9), _pt(64, 0.5, 1.5))
     bw = D.choose_bandwidth(pts)
     assert bw.band == (8, 32) and bw.wn == 16  # 64 fails at dt/2, 4 misses the target

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from lgw.sim.lunar.batch import rk4_batch, rk4_numpy, simulate, solve_ivp_case
 from lgw.sim.lunar.closed_loop import RunOptions, field, initial_state, make_context
+from lgw.sim.lunar.outcomes import OUTCOMES, case_record
 from lgw.sim.lunar.reference import reference
 from lgw.sim.lunar.scenario import section5_case
 from lgw.theory.lunar import parameters as P
@@ -65,8 +66,8 @@ def test_case_below_the_surface_is_flagged_not_dropped():
                        [g] * 2)
     res = rk4_batch(ctx, X0)
     assert res.n_cases == 2
-    assert res.flagged == [(1, 0.0, "surface_contact")]
-    assert list(res.cases["outcome"]) == [0, 1]
+    assert res.flagged == [(1, 0.0, "below_surface")]
+    assert [OUTCOMES[k] for k in res.cases["outcome"]] == ["completed", "below_surface"]
     assert np.all(np.isfinite(res.X))  # frozen at t = 0, not dropped, no NaN
 
 
@@ -79,7 +80,7 @@ def test_surface_contact_is_located_inside_the_step():
                        np.array([[1.0], [0], [0], [0]]), np.zeros((3, 1)), [g])
     X0[5] = 100.0  # w: r' = -w
     res = simulate(ctx, X0, record=False)
-    assert res.flagged and res.flagged[0][2] == "surface_contact"
+    assert res.flagged and res.flagged[0][2] == "crashed"
     t_c = res.flagged[0][1]
     ev = lambda t, x: x[0] - P.R_MOON  # noqa: E731
     ev.terminal = True
@@ -87,6 +88,12 @@ def test_surface_contact_is_located_inside_the_step():
                   method="DOP853", rtol=1e-10, atol=1e-10, events=ev)
     # located on the Hermite interpolant (O(h^4)), not at the next node (0.05 s grid)
     assert abs(t_c - s.t_events[0][0]) < 1e-4, (t_c, s.t_events[0])
+    # the case ends at the crossing: on the surface, with the impact speed of the reference
+    rec = case_record(res.cases, 0)
+    assert abs(res.cases["y_end"][0, 0] - P.R_MOON) < 1e-6
+    want = np.linalg.norm(s.y_events[0][0][3:6])
+    assert abs(rec["impact_speed_mps"] - want) < 1e-4 * want, (rec, want)
+    assert 90.0 < rec["impact_vertical_speed_mps"] <= rec["impact_speed_mps"]  # w: downward
 
 
 @pytest.mark.parametrize("case", ["section5", "random"])

@@ -31,7 +31,7 @@ from lgw.tuning.system import Job, Outcome
 
 VARIANT_NAMES = ("pdsmc-sign", "pdsmc-tanh", "ftsmc-sign", "ftsmc-tanh", "fuzzy-sign",
                  "fuzzy-tanh")  # lgw.sim.eros.laws.VARIANTS by name (tests check they agree)
-OUTCOME_NOTE = ("one per case, the first that happened: surface_contact (a sample inside the "
+OUTCOME_NOTE = ("one per case, the first that happened: crashed (a sample inside the "
                 "shape model), nonfinite (control or state NaN/inf), tracked (|e_i| <= 1 cm on "
                 "every axis to the horizon), horizon (none of these by the horizon); "
                 "t_outcome in s")
@@ -147,6 +147,7 @@ class SimulateJob(Job):
 
         e0, ed0, ph = self.states
         rows = []
+        convs: list[tuple[str, Any]] = []
         for lw, sw in self.variants:
             name = SL.variant_name(lw, sw)
             progress.stage(f"{name}: {len(e0)} case{'s' if len(e0) > 1 else ''}")
@@ -159,6 +160,10 @@ class SimulateJob(Job):
                                    "nonfinite": counts["nonfinite"]}
             for k, _ in COLUMNS:
                 row[k] = finite_stats(s[k], counted)
+            conv = convergence(e0, ed0, ph, self.gains, replace(self.base, law=lw, switch=sw),
+                               s)
+            row["convergence"] = conv.to_dict()
+            convs.append((name, conv))
             if len(e0) == 1:
                 row.update(outcome=OUTCOMES[int(s["outcome"][0])],
                            t_outcome=float(s["t_outcome"][0]),
@@ -178,10 +183,49 @@ class SimulateJob(Job):
                "notes": {"statistics": "over the cases whose outcome is tracked or horizon; "
                          "the others are counted in outcomes", "null": "never happened "
                          "within the horizon (e.g. never tracked)", "outcomes": OUTCOME_NOTE}}
-        return Outcome(doc, render=lambda con: _render(con, rows, self.settings),
-                       files={"simulate.json": DOCUMENT}, figures=figures,
+        def render(con: Any) -> None:
+            _render(con, rows, self.settings)
+            for name, conv in convs:
+                for line in conv.notes():
+                    con.print(f"{name}: {line}", markup=False)
+
+        return Outcome(doc, render=render, files={"simulate.json": DOCUMENT}, figures=figures,
                        flags=[f"{r['variant']}: {r['nonfinite']} case(s) became non-finite "
-                              "(counted apart)" for r in rows if r["nonfinite"]])
+                              "(counted apart)" for r in rows if r["nonfinite"]]
+                       + [f for name, conv in convs for f in conv.flags(f"simulate eros {name}")])
+
+
+# per-case tolerances of the table's numbers (lgw.sim.convergence: 1 % or the resolution)
+ATOL = {"t_reach_max": 1e-3, "t_track_all": 1e-3, "iae": 1e-6, "u_peak": 1e-6, "effort": 1e-6,
+        "chatter": 1e-6}
+
+
+def convergence(e0: np.ndarray, ed0: np.ndarray, ph: np.ndarray, gains: Any, opts: Any,
+                summary: dict[str, np.ndarray]) -> Any:
+    """The convergence record of one variant's run (lgw.sim.convergence): its cases (all, or
+    an even spread of a campaign) flown again with the RK4 step halved (twice the steps per
+    controller sample: the sample time is the controller's, not the integrator's), every
+    number of the table compared per case."""
+    from dataclasses import replace
+
+    from lgw.sim.convergence import Tol, check_indices, compare_cases
+    from lgw.sim.eros.batch import OUTCOMES, metrics, simulate
+    from lgw.sim.eros.campaign import summarize
+
+    idx = check_indices(len(e0))
+    fine = replace(opts, n_sub=2 * opts.n_sub)
+    s2 = summarize(metrics(simulate(e0[idx], ed0[idx], gains, fine, ph[idx])))
+
+    def recs(s: dict[str, np.ndarray], rows: Any) -> list[dict[str, Any]]:
+        return [{"outcome": OUTCOMES[int(s["outcome"][j])],
+                 **{k: float(s[k][j]) for k, _ in COLUMNS}} for j in rows]
+
+    step = opts.dt / opts.n_sub
+    return compare_cases(recs(summary, idx), recs(s2, range(len(idx))),
+                         {k: Tol(atol=ATOL[k]) for k, _ in COLUMNS}, how="step halving",
+                         base_label=f"RK4 step {step:g} s ({opts.n_sub} per sample)",
+                         check_label=f"RK4 step {step / 2:g} s", cases=idx.tolist(),
+                         total=len(e0))
 
 
 def _render(con: Any, rows: list[dict[str, Any]], st: dict[str, Any]) -> None:

@@ -18,11 +18,12 @@ from dataclasses import replace
 
 import numpy as np
 from lgw.sim.eros import laws as SL
-from lgw.sim.eros.batch import SimOptions, metrics, reference_solve
+from lgw.sim.eros.batch import OUTCOMES, SimOptions, metrics, reference_solve
 from lgw.sim.eros.campaign import summarize
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros.gains import Gains
 from lgw.theory.evidence import Claim, Search, Step, Witness
+from lgw.tuning.stats import finite_stats
 
 CHATTER_FRACTION = 0.01  # chosen: "eliminated" = 1 % of the sgn FTSMC's total variation
 ORDER = ("fuzzy", "ftsmc", "pdsmc")  # the paper's ranking, best first
@@ -99,7 +100,10 @@ def claims(g: Gains, base: SimOptions, scen: dict, mc) -> list[Claim]:
             frac = float(np.mean(margins > 0))
             steps = [Step(f"{key}: {' < '.join(names)} on every case",
                           Search(dom, "scenario + seeded Monte Carlo", n + 1, best, bpt, 0, w))]
-            means = {nm: float(np.mean(res[nm][key])) for nm in names}
+            # over the finite values of the tracked and horizon cases (a crashed or non-finite
+            # case is no number to average: lgw.tuning.stats.finite_stats)
+            means = {nm: finite_stats(res[nm][key], np.isin(res[nm]["outcome"], [
+                OUTCOMES.index("tracked"), OUTCOMES.index("horizon")]))["mean"] for nm in names}
             out.append(Claim(f"{cid}-{sw}", "Table 2" if key == "iae" else "Figs. 3-11",
                              f"{title} ({sw})", paper,
                              f"scenario {dict(zip(names, sv.round(3).tolist(), strict=True))}; "

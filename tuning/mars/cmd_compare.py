@@ -119,7 +119,7 @@ class CompareJob(Job):
         stderr = ["warning: --amplitude is deprecated; use --dist-amplitude"] \
             if self.deprecated else []
         return Outcome(doc, render=lambda con: _render(con, report), files=files,
-                       stderr=stderr)
+                       stderr=stderr, flags=list(report.get("convergence_flags", [])))
 
 
 def _thrust_range(n: int) -> str:
@@ -154,6 +154,9 @@ def _render(con: Any, report: dict[str, Any]) -> None:
                  [[c.strip() for c in row] for row in table_cells(report)])
     con.print(report["note"], markup=False, highlight=False)
     con.print(report["why"], markup=False, highlight=False)
+    if "convergence" in report:  # the verdict; unconverged numbers follow as warnings
+        con.print(report["convergence"].split("; UNCONVERGED")[0], markup=False,
+                  highlight=False)
 
 
 def plan(opts: Options, system: Any) -> CompareJob:

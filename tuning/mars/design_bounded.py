@@ -337,7 +337,7 @@ def simulate_check(bg: Gains, req: BoundedRequest, boxes, m_max: float, *,
             "latest_state": np.r_[r0[k], v0[k], m0[k]].tolist(),
             "saturated": int(np.sum(res.time_saturated > 0)),
             "nonfinite": int(np.sum(res.nonfinite)),
-            "below_ground": int(np.sum(res.min_altitude < -GROUND_SLACK)),
+            "below_ground": int(np.sum(res.crashed)),  # met the ground before landing
             "min_altitude": float(np.min(res.min_altitude)),
             "peak_thrust": float(np.max(res.peak_thrust))}
 
