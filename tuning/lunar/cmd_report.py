@@ -39,7 +39,7 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
         sections.append(sec)
     sections.append(_no_tuner_section(g))
     progress.stage("deriving and judging every claim of seed 001")
-    claims = all_claims(scenario)
+    claims = all_claims(g, scenario)  # every gain-set claim judged for these gains
     bounds, note = bounds_table(g, measured)
     return ReportParts(claims, report_spec(g, bounds, note), sections, coverage_rows())
 
