@@ -31,7 +31,13 @@ from lgw.theory.evidence import (
     Unproven,
     Witness,
 )
-from lgw.theory.provers import identity_evidence, prove_identity, prove_nonneg, prove_z3
+from lgw.theory.provers import (
+    identity_evidence,
+    prove_identity,
+    prove_nonneg,
+    prove_z3,
+    refute_nonneg_at,
+)
 from lgw.theory.report_math import At
 from scipy.integrate import quad, solve_ivp
 
@@ -137,6 +143,40 @@ def _pq(rv: float) -> tuple[int, int]:
     return int(fr.p), int(fr.q)
 
 
+# --- printed settling times against the derived ones -------------------------------------------
+
+FORMULA_TOL = 1e-9  # relative: a printed formula "equals" the derived one to rounding
+
+
+def _printed_time_search(statement: str, printed, derived, alpha_used: bool, seed: int) -> Step:
+    """A printed settling-time formula against the derived closed form over PARAM_DOMAIN: the
+    margin is FORMULA_TOL - |printed - derived|/derived (>= 0: equal to rounding); the worst
+    point is re-checked against the ODE time (SETTLING_ODE_TOL - |printed - t_ode|/t_ode)."""
+    rv, av, bv, ev_ = _sample(400, seed)
+    margins = []
+    for i in range(len(rv)):
+        p_, q_ = _pq(rv[i])
+        a_ = av[i] if alpha_used else 0.0
+        d_ = float(derived(ev_[i], a_, bv[i], p_ / q_))
+        margins.append(FORMULA_TOL - abs(float(printed(ev_[i], a_, bv[i], p_, q_)) - d_) / d_)
+    j = int(np.argmin(margins))
+    p_, q_ = _pq(rv[j])
+    a_ = av[j] if alpha_used else 0.0
+    pr = float(printed(ev_[j], a_, bv[j], p_, q_))
+    pt = {"p": p_, "q": q_, **({"alpha": a_} if alpha_used else {}), "beta": bv[j],
+          "e0": ev_[j], "printed": pr}
+    w = None
+    if margins[j] < 0:
+        t_ode = ode_settling_time(ev_[j], a_, bv[j], p_ / q_)
+        pt["ode"] = t_ode
+        w = Witness(pt, margins[j], f"{FORMULA_TOL:g} - |printed - derived closed form| / "
+                    "derived", SETTLING_ODE_TOL - abs(pr - t_ode) / t_ode,
+                    f"{SETTLING_ODE_TOL:g} - |printed - solve_ivp (DOP853) time| / time", seed)
+    return Step(statement, Search(PARAM_DOMAIN, "random sampling, p/q rationalised (q <= 40); "
+                                  "relative margin", len(rv), float(margins[j]), pt, seed, w,
+                                  relative=True))
+
+
 # --- (5): terminal surface -----------------------------------------------------------------
 
 @cache
@@ -164,25 +204,14 @@ def settling_tsm_claim() -> Claim:
     printed = B.ts_tsm_printed  # the formula after (5)
     pp, qq = sp.symbols("p q", positive=True)
     dd = sp.Symbol("d", positive=True)  # q - p > 0
-    pr_sym = pp / (beta * (pp - qq)) * e0 ** ((pp - qq) / pp)
-    neg = prove_nonneg(-pr_sym.subs(qq, pp + dd), "the printed t_s is negative for every "
-                       "p < q, beta > 0, e0 != 0", strict=True)
-    rv, _, bv, ev_ = _sample(400)
-    margins = []
-    for i in range(len(rv)):
-        p_, q_ = _pq(rv[i])
-        margins.append(printed(ev_[i], bv[i], p_, q_) - B.ts_tsm(ev_[i], bv[i], p_ / q_))
-    j = int(np.argmin(margins))
-    p_, q_ = _pq(rv[j])
-    t_ode = ode_settling_time(ev_[j], 0.0, bv[j], p_ / q_)
-    w = Witness({"p": p_, "q": q_, "beta": bv[j], "e0": ev_[j],
-                 "printed": printed(ev_[j], bv[j], p_, q_), "ode": t_ode},
-                margins[j], "printed minus derived closed form",
-                printed(ev_[j], bv[j], p_, q_) - t_ode, "printed minus solve_ivp (DOP853) time",
-                SEED)
-    search = Step("printed t_s = p/(beta(p-q)) |e0|^((p-q)/p) equals the settling time over the "
-                  "range", Search(PARAM_DOMAIN, "random sampling, p/q rationalised (q <= 40)",
-                                  len(rv), float(min(margins)), w.point, SEED, w))
+    pr_sym = printed(e0, beta, pp, qq)  # the bound function on symbols
+    neg = refute_nonneg_at(pr_sym.subs(qq, pp + dd), {pp: 3, dd: 2, beta: 1, e0: 2},
+                           "the printed t_s is a time (>= 0) for every p < q, beta > 0, "
+                           "e0 != 0 (q = p + d, d > 0)")
+    search = _printed_time_search(
+        "printed t_s = p/(beta(p-q)) |e0|^((p-q)/p) equals the settling time over the range",
+        lambda e0v, _a, bv, p_, q_: printed(e0v, bv, p_, q_),
+        lambda e0v, _a, bv, rv_: B.ts_tsm(e0v, bv, rv_), False, SEED)
     swap = prove_identity(pr_sym.subs({pp: qq, qq: pp}, simultaneous=True).subs(
         qq, 1).subs(pp, 1 - c) - derived.subs(e0, e0),
         "the printed formula is the derived one with p and q exchanged (q/p, the convention "
@@ -190,9 +219,9 @@ def settling_tsm_claim() -> Claim:
     return Claim("settling-tsm", "(5)", "Settling time on the terminal surface (5)",
                  "t_s = (p/(beta(p-q))) |e1(0)|^((p-q)/p)",
                  "t_s = q/(beta(q-p)) |e0|^((q-p)/q) (separation of variables); the printed "
-                 "one is negative for every p < q", tuple(steps) + (neg, search),
+                 "one is negative for every p < q", tuple(steps) + (search, neg),
                  scope="all-gains", remarks=(swap,),
-                 numbers={"witness": w.to_dict()},
+                 numbers={"witness": search.witness.to_dict() if search.witness else None},
                  paper_expr=sp.Eq(T_S, pr_sym, evaluate=False),
                  derived_expr=sp.Eq(T_S, disp(derived), evaluate=False))
 
@@ -215,25 +244,10 @@ def settling_ftsm_claim() -> Claim:
                                   "(1-r))"),
                    sp.Eq(T_S, disp(sp.Integral(integrand, (E, 0, e0))), evaluate=False)),
     ]
-    rv, av, bv, ev_ = _sample(400, SEED + 1)
-    margins = []
-    for i in range(len(rv)):
-        p_, q_ = _pq(rv[i])
-        margins.append(B.ts_ftsm_printed(ev_[i], av[i], bv[i], p_, q_)
-                       - B.ts_ftsm(ev_[i], av[i], bv[i], p_ / q_))
-    j = int(np.argmin(margins))
-    p_, q_ = _pq(rv[j])
-    pr = float(B.ts_ftsm_printed(ev_[j], av[j], bv[j], p_, q_))
-    t_ode = ode_settling_time(ev_[j], av[j], bv[j], p_ / q_)
-    w = Witness({"p": p_, "q": q_, "alpha": av[j], "beta": bv[j], "e0": ev_[j], "printed": pr,
-                 "ode": t_ode}, margins[j], "printed (7) minus derived closed form",
-                pr - t_ode, "printed (7) minus solve_ivp (DOP853) time", SEED)
-    search = Step("printed (7) equals the settling time over the range",
-                  Search(PARAM_DOMAIN, "random sampling, p/q rationalised (q <= 40)", len(rv),
-                         float(min(margins)), w.point, SEED + 1, w))
+    search = _printed_time_search("printed (7) equals the settling time over the range",
+                                  B.ts_ftsm_printed, B.ts_ftsm, True, SEED + 1)
     pp, qq = sp.symbols("p q", positive=True)
-    pr_sym = pp / (alpha * (pp - qq)) * (sp.log(alpha * e0 ** ((pp - qq) / pp) + beta)
-                                         - sp.log(beta))
+    pr_sym = B.ts_ftsm_printed(e0, alpha, beta, pp, qq)  # the bound function on symbols
     swap = prove_identity(sp.expand_log(pr_sym.subs({pp: qq, qq: pp}, simultaneous=True)
                                         .subs(qq, 1).subs(pp, 1 - c) - derived, force=True),
                           "the printed (7) is the derived one with p and q exchanged")
@@ -241,7 +255,7 @@ def settling_ftsm_claim() -> Claim:
                  "t_s = p/(alpha(p-q)) (ln(alpha e1^((p-q)/p) + beta) - ln beta)",
                  "t_s = q/(alpha(q-p)) ln(1 + alpha|e0|^((q-p)/q)/beta); the printed (7) is "
                  "negative for every p < q", tuple(steps) + (search,), remarks=(swap,),
-                 numbers={"witness": w.to_dict()},
+                 numbers={"witness": search.witness.to_dict() if search.witness else None},
                  paper_expr=sp.Eq(T_S, pr_sym, evaluate=False),
                  derived_expr=sp.Eq(T_S, disp(derived), evaluate=False))
 
@@ -298,13 +312,16 @@ def growth_claim() -> Claim:
     d_dt = sp.diff(derived, e0)
     grow = prove_nonneg(d_dt, "d t_s / d|e0| > 0: the time grows with |e0| (derived t_s of (5))",
                         strict=True)
-    pp, dd = sp.symbols("p d", positive=True)
-    expo = ((pp - (pp + dd)) / pp)
-    neg = prove_nonneg(-expo, "the printed exponent (p-q)/p is negative for p < q: "
-                       "|e0|^((p-q)/p) decreases with |e0|", strict=True)
+    pp, qq, dd = sp.symbols("p q d", positive=True)
+    # the printed exponent: the logarithmic derivative of the printed t_s (bounds function)
+    pr = B.ts_tsm_printed(e0, beta, pp, qq)
+    expo = sp.simplify(e0 * sp.diff(pr, e0) / pr)
+    neg = refute_nonneg_at(expo.subs(qq, pp + dd), {pp: 3, dd: 2},
+                           "the printed t_s grows with |e0|: its exponent d ln t_s / d ln|e0| "
+                           "is >= 0 for p < q (q = p + d)")
     # witness: the printed proportionality predicts a shorter time for a 10x larger e0
     p_, q_, bv = 3, 5, 1.0
-    ratio_pr = 10.0 ** ((p_ - q_) / p_)
+    ratio_pr = float(B.ts_tsm_printed(10.0, bv, p_, q_) / B.ts_tsm_printed(1.0, bv, p_, q_))
     ratio_ode = ode_settling_time(10.0, 0, bv, p_ / q_) / ode_settling_time(1.0, 0, bv, p_ / q_)
     w = Witness({"p": p_, "q": q_, "beta": bv, "e0": [1.0, 10.0], "printed_ratio": ratio_pr,
                  "ode_ratio": ratio_ode}, ratio_pr - 1.0,
@@ -317,7 +334,7 @@ def growth_claim() -> Claim:
     return Claim("growth-e0", "(5)", "Growth of the settling time with |e0|",
                  "the convergence time increases proportional to |e1(0)|^((p-q)/p)",
                  "it grows as |e0|^((q-p)/q) (true growth); the printed exponent is negative",
-                 (_with_expr(grow, sp.Gt(sp.Derivative(T_S, e0), 0, evaluate=False)), neg, step),
+                 (_with_expr(grow, sp.Gt(sp.Derivative(T_S, e0), 0, evaluate=False)), step, neg),
                  numbers={"ratio_ode": ratio_ode, "ratio_printed": ratio_pr},
                  paper_expr=(sp.Eq(T_S, sp.Symbol("C", positive=True)
                                    * e0 ** ((P_ - Q_) / P_), evaluate=False),),
@@ -454,12 +471,15 @@ def reaching_tanh_claim() -> Claim:
 def sdot_claim() -> Claim:
     # total derivative of s along e' = ed, ed' = edd: ds/dt = ds/de ed + edd (e != 0)
     edd = EDDOT
-    s_f = L.surface_ftsm()
+    s_f = L.surface_ftsm()  # the law's surface (6)
+    # (11) as printed, e^(p/q-1) read as |e|^(p/q-1) (the sig reading of e^(p/q))
+    printed11 = edd + ed * (alpha + beta * r * sp.Abs(e) ** (r - 1))
     total = sp.diff(s_f.subs(e, E), E) * ed + edd
-    st_pos = prove_identity(sp.simplify(total - (L.ds_de("ftsm").subs(e, E) * ed + edd)),
-                            "e > 0: ds/dt = e'' + e'(alpha + beta (p/q) e^(p/q-1))")
+    st_pos = prove_identity(sp.simplify(total - printed11.subs(e, E)),
+                            "e > 0: ds/dt of the law's surface (6) = e'' + e'(alpha + beta "
+                            "(p/q) e^(p/q-1)) (11)")
     totneg = sp.diff(s_f.subs(e, -E), E) * (-ed) + edd  # d/dt with e = -E(t), E' = -ed
-    st_neg = prove_identity(sp.simplify(totneg - (L.ds_de("ftsm").subs(e, -E) * ed + edd)),
+    st_neg = prove_identity(sp.simplify(totneg - printed11.subs(e, -E)),
                             "e < 0: the same with |e|^(p/q-1) (sig reading of e^(p/q))")
     st_pos = _with_expr(st_pos, sp.Eq(SDOT, disp(total), evaluate=False))
     printed11 = sp.Eq(SDOT, EDDOT + EDOT * (alpha + beta * (P_ / Q_) * e ** (P_ / Q_ - 1)),
@@ -555,7 +575,8 @@ def singular_claim() -> Claim:
                          "the term is unbounded (p/q < 1)")
     # (b) on the surface e' = -alpha e - beta sig(e)^r: e'|e|^(r-1) = -alpha|e|^r sgn e -
     # beta |e|^(2r-1) sgn e, bounded iff r >= 1/2
-    on = on_branches((-alpha * e - beta * L.sig(e, r)) * sp.Abs(e) ** (r - 1)
+    ed_on = sp.solve(sp.Eq(L.surface_ftsm(), 0), ed)[0]  # e' on the law's surface s = 0
+    on = on_branches(ed_on * sp.Abs(e) ** (r - 1)
                      - (-alpha * sp.Abs(e) ** r - beta * sp.Abs(e) ** (2 * r - 1)) * sp.sign(e),
                      "on the surface: e'|e|^(r-1) = -(alpha|e|^r + beta|e|^(2r-1)) sgn(e), "
                      "bounded near 0 iff 2 p/q - 1 >= 0")
@@ -570,8 +591,7 @@ def singular_claim() -> Claim:
     off = _with_expr(off, sp.Eq(sp.Limit(disp(edp * E ** (-c)).xreplace({edp: EDOT}), EPOS, 0,
                                          "+"), sp.oo, evaluate=False))
     on_form = disp((-alpha * sp.Abs(e) ** r - beta * sp.Abs(e) ** (2 * r - 1)) * sp.sign(e))
-    on = _with_expr(on, sp.Eq(disp((-alpha * e - beta * L.sig(e, r)) * sp.Abs(e) ** (r - 1)),
-                              on_form, evaluate=False))
+    on = _with_expr(on, sp.Eq(disp(ed_on * sp.Abs(e) ** (r - 1)), on_form, evaluate=False))
     jump_disp = sp.Eq(disp(2 * sp.Integral(beta * r * (E ** (r - 1) - eps ** (r - 1)),
                                            (E, 0, eps))), disp(2 * beta * eps**r * (1 - r)),
                       evaluate=False)
@@ -1211,21 +1231,22 @@ def gravity_claim() -> Claim:
 
 @cache
 def mass_claim() -> Claim:
-    Mp, Mm = sp.Rational("6.69e5"), sp.Rational("6.687e15")
+    Mp, Mm = sp.Rational(repr(P.MASS_PRINTED)), sp.Rational(repr(P.MASS))
     gm_printed = P.G * P.MASS_PRINTED
     w = Witness({"M_printed_kg": P.MASS_PRINTED, "M_measured_kg": P.MASS},
-                float(Mp / Mm - 1), "M_printed / M_measured - 1 (exact)",
-                gm_printed / P.GM_NEAR - 1, "G M_printed / GM(NEAR) - 1", SEED)
+                -abs(float(Mp / Mm - 1)), "-|M_printed / M_measured - 1| (exact)",
+                -abs(gm_printed / P.GM_NEAR - 1), "-|G M_printed / GM(NEAR) - 1|", SEED)
     step = Step("Table 1's 6.69e5 kg is the mass of Eros",
                 Identity(Mp / Mm - 1, "exact rationals", point_witness=w))
     rad = Step("Table 1's 16000 m is an average radius",
-               Search({"R": "16000 m"}, "compare with the volume-equivalent radius", 1,
-                      float(P.R_MEAN - P.RADIUS_PRINTED), {"R_mean_m": P.R_MEAN}, SEED,
+               Search({"R": f"{P.RADIUS_PRINTED:g} m"}, "compare with the volume-equivalent "
+                      "radius", 1, -abs(float(P.R_MEAN - P.RADIUS_PRINTED)),
+                      {"R_mean_m": P.R_MEAN}, SEED,
                       Witness({"R_printed": P.RADIUS_PRINTED, "R_mean": P.R_MEAN},
-                              float(P.R_MEAN - P.RADIUS_PRINTED),
-                              "(3V/4pi)^(1/3) - 16000, V = 2503 km^3",
+                              -abs(float(P.R_MEAN - P.RADIUS_PRINTED)),
+                              "-|(3V/4pi)^(1/3) - R_printed|, V = 2503 km^3",
                               float(P.R_MEAN * 1.3 - P.RADIUS_PRINTED),
-                              "with V 2.2x larger than measured (+30 % radius) still < 16 km",
+                              "with V 2.2x larger than measured (+30 % radius) still < R_printed",
                               SEED)))
     return Claim("table1-constants", "Table 1", "Table 1 constants",
                  "mass 6.69e5 kg, average radius 16000 m",

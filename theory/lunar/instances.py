@@ -189,10 +189,11 @@ def failure_claim() -> Claim:
     fac = failure_factor(t, tf, Ta)
     kappa = sp.Symbol("kappa", positive=True)  # the factor, for display
     ta = sp.Rational(repr(P.T_A))
-    before = identity_at((fac - 1).subs(t, tf / 2), {Ta: ta},
+    # (26) with the model's T_a (seed 001 S5), at the failure time and half a second after
+    before = identity_at((fac - 1).subs({t: tf / 2, Ta: ta}), {},
                          "(26) gives the commanded thrust (factor 1) for t <= t_f/2: at "
                          f"t = t_f/2, T_a = {P.T_A} (seed 001 S5)")
-    after = identity_at((fac - Ta).subs(t, tf / 2 + sp.Rational(1, 2)), {Ta: ta},
+    after = identity_at((fac - Ta).subs({t: tf / 2 + sp.Rational(1, 2), Ta: ta}), {},
                         "(26) gives 70 % of the command (factor T_a) for t_f/2 < t <= t_f: at "
                         f"t = t_f/2 + 0.5 s, T_a = {P.T_A}")
     step_model = sp.Piecewise((1, t <= tf / 2), (Ta, True))

@@ -211,7 +211,7 @@ def _z_l2_claim(key: str) -> Claim:
     S = systems()[0]
     x10, x20 = sp.symbols("x1_0 x2_0", real=True)
     st0 = {S.x1[0]: x10, S.x2[0]: x20, S.lam1[0]: 0, S.lam2[0]: 0}
-    v_printed = B.v2_initial(x10, (S.x2 - S.p)[0].subs(st0), printed=True)
+    v_printed = B.v2_initial(x10, (S.x2 - S.p)[0].subs(st0), S.d0e, S.D, S.q, printed=True)
     gap = sp.simplify(v_printed - S.V2.subs(st0))
     steps.append(identity_at(gap, {S.d0e: Qo.d0e0, S.D: 1, S.q: Qo.q},
                              "(20) as printed, |z1(0)|^2/2 + |z2(0)|^2/2, is V2 (12) at t = 0 "
@@ -386,8 +386,10 @@ def _transient_derived_claim(key: str) -> Claim:
     nums = {}
     for Q in _loop_quantities(g):
         k1f1 = float(np.linalg.norm(getattr(g, Q.loop).K1 @ np.array([[0.0], [0.0], [-1.0]])))
+        ok = bool(Q.f1bar > 0 and Q.f2bar - Q.f3 > 0 and Q.f2bar > sp.Rational(1, 2))
         nums[f"{Q.loop}.(21a) V2(0)=1, du=0"] = float(B.transient_bounds(
-            1.0, 0.0, float(Q.f1bar), float(Q.f2bar), float(Q.f3), k1f1)[0])
+            1.0, 0.0, float(Q.f1bar), float(Q.f2bar), float(Q.f3), k1f1)[0]) if ok else (
+            "hypotheses fail")
     dsp = {V0: at0(V2S), WL2: norm(B0S * DU)}
     return Claim("transient-21-derived", "(18), (19), (21)", "Transient L2 bounds (derived)",
                  "(21) as printed", "(21a) ||x1|| <= (sqrt(2 V2(0)) + ||B0 du||)/sqrt(2 f1bar) "

@@ -1,8 +1,8 @@
 """A scalar instance of seed 001's general system (5) under the law (7)-(11), flown by SciPy:
 the witness route for the transient L2 bounds (19)-(21).
 
-The instance is ``lgw.theory.lunar.law.GeneralSystem`` with n1 = n2 = m = 1: f1 = -1 (the
-vertical component of the orbit loop's a_h, seed 001 (22)), f2 = 0, B0 = -1 (any nonzero b:
+The instance is ``lgw.theory.lunar.law.GeneralSystem`` with n1 = n2 = m = 1: f1 = the
+vertical component of the law's orbit f1 = a_h (-1, seed 001 (22)), f2 = 0, B0 = -1 (any nonzero b:
 B0 B0^+ = 1, the closed loop does not depend on it), K1 = K1_zz, F2 = f2bar of the orbit gains
 in use, f3, q, d0e(0) of the same gains, a constant disturbance d = D (so ||d|| = D and the
 paper's d^_0 = d0e - ||d|| is the constant-bound reading), no saturation (du = 0, so lambda = 0
@@ -53,9 +53,11 @@ def scalar_gains(g: LoopGains) -> ScalarGains:
 
 
 @cache
-def _rhs(f1v: int = -1):
+def _rhs():
     """The closed loop of the scalar instance, lambdified: y' = rhs(y, k1, F2, f3, q, D) for
-    y = (x1, x2, lambda1, lambda2, d0e, int z1^2, int z2^2)."""
+    y = (x1, x2, lambda1, lambda2, d0e, int z1^2, int z2^2); f1 is the vertical component of
+    the law's orbit f1 (a_h)."""
+    f1v = L.orbit_system().f1[0, 2]
     x1, x2 = sp.Symbol("x1_1", real=True), sp.Symbol("x2_1", real=True)
     k1, F2 = sp.Symbol("k1", positive=True), sp.Symbol("F2", positive=True)
     S = L.GeneralSystem(sp.Matrix([x1]), sp.Matrix([x2]), sp.Matrix([[f1v]]), sp.zeros(1, 1),
