@@ -74,6 +74,17 @@ def relabel(rel: sp.Basic, fn) -> sp.Basic:
     return fn(rel)
 
 
+def lemma(statement: str, claim: Claim) -> Step:
+    """A step that uses another claim of this report as a lemma.  A proved or proved-given
+    lemma is cited with its own steps as the hypotheses (so its evidence stays in view); any
+    other verdict goes through ``FromClaim``: a checked lemma stays checked, and a lemma the
+    workbench refutes or leaves unproven makes the step unproven, never proved."""
+    if claim.verdict in ("proved", "proved-given"):
+        return Step(statement, Cited(f"claim {claim.id} of this report", claim.title,
+                                     claim.steps))
+    return Step(statement, FromClaim(claim))
+
+
 def _with_expr(step: Step, expr: sp.Basic | tuple) -> Step:
     """``step`` (made by a prover) with the formula it asserts, for rendering."""
     return dataclasses.replace(step, expr=expr)
@@ -332,16 +343,16 @@ def _lasalle_claim(key: str) -> Claim:
     Qs = [quantities(loop, getattr(g, loop)) for loop in ("orbit", "attitude")]
     W = Cited("claim V2dot-bound of this report (the corrected (13); the printed one, with a "
               "time-varying ||d||, is refuted: claim V2dot)", "(13)",
-              (Step("V2' <= -f1bar||z1||^2 - (f2bar - f3bar)||z2||^2",
-                    FromClaim(v2dot_bound_claim())),
+              (lemma("V2' <= -f1bar||z1||^2 - (f2bar - f3bar)||z2||^2",
+                     v2dot_bound_claim()),
                *(f2bar_minus_f3(Q) for Q in Qs)))
     hyps = (
         prove_nonneg(S.in_z(S.V2).subs(S.D, S.d0e - sp.Symbol("dhat", real=True)),
                      "V2 >= 0 (positive definite and radially unbounded in (z1, z2, d^_0))"),
         Step("V2' <= -W(z) = -f1bar||z1||^2 - (f2bar - f3bar)||z2||^2 with W continuous and "
              "positive semidefinite (f2bar - f3bar > 0 on the gains in use)", W),
-        Step("the closed-loop vector field is locally Lipschitz in the state, uniformly in t",
-             FromClaim(smooth_claim())),
+        lemma("the closed-loop vector field is locally Lipschitz in the state, uniformly in t",
+              smooth_claim()),
         Step("f1bar > 0 uniformly in t (F1 bounded below along the run)",
              Unproven("orbit: F1 = K1_zz constant (holds); attitude: f1bar = lambda_min(K1) "
                       "eq0^2/4 needs |eq0| bounded away from 0 along the run, a property of the "

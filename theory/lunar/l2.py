@@ -16,7 +16,7 @@ from functools import cache
 
 import numpy as np
 import sympy as sp
-from lgw.theory.evidence import Cited, Claim, FromClaim, Search, Step
+from lgw.theory.evidence import Cited, Claim, Search, Step
 from lgw.theory.falsify import Budget, Dim, Problem, falsify
 from lgw.theory.lunar import bounds as B
 from lgw.theory.lunar import scalar_run as SR
@@ -34,6 +34,7 @@ from lgw.theory.lunar.derivation import (
     at0,
     gains_key,
     gains_of,
+    lemma,
     systems,
     v2dot_bound_claim,
     vlambda_claim,
@@ -91,8 +92,8 @@ def _l2_claim(key: str) -> Claim:
     I = _integrated_17b()
     J = sp.Symbol("J_w", real=True)  # ||B0 du||^2
     c1, c2 = B.lambda_gain_bounds(F1B, F2B)  # the printed (18) constants, symbolically
-    steps = [Step("(17b): Vlambda' <= -f1bar|l1|^2 - (f2bar - 1/2)|l2|^2 + |B0 du|^2/2",
-                  FromClaim(vlambda_claim())),
+    steps = [lemma("(17b): Vlambda' <= -f1bar|l1|^2 - (f2bar - 1/2)|l2|^2 + |B0 du|^2/2",
+                   vlambda_claim()),
              I.check, I.proofs["lambda1"], I.proofs["lambda2"],
              prove_identity(sp.simplify(c1 ** 2 * J - I.bounds["lambda1"]),
                             "(18a) as printed (bounds.lambda_gain_bounds): ||lambda1||^2 <= "
@@ -259,7 +260,7 @@ def _z_l2_derived_claim(key: str) -> Claim:
     st0 = {S.x1[0]: x10, S.x2[0]: x20, S.lam1[0]: 0, S.lam2[0]: 0}
     v_law = S.V2.subs(st0)
     v_fn = B.v2_initial(x10, (S.x2 - S.p)[0].subs(st0), S.d0e, S.D, S.q)
-    steps = [Step("(13) with a constant bound D >= ||d(t)||", FromClaim(v2dot_bound_claim())),
+    steps = [lemma("(13) with a constant bound D >= ||d(t)||", v2dot_bound_claim()),
              I.check, I.proofs["z1"], I.proofs["z2"],
              prove_identity(sp.simplify(d1 - I.bounds["z1"]) + sp.simplify(d2 - I.bounds["z2"]),
                             "bounds.z_l2_bounds (the function the CLI, verify and the report "
@@ -330,8 +331,8 @@ def _transient_claim(key: str) -> Claim:
     composed, printed_a = _composition(True)
     ev = _witness_21a(key)
     steps = [_minkowski(),
-             Step("(18): the virtual-state bounds", FromClaim(l2_claim(g))),
-             Step("(19)-(20) as printed (the paper's premise of (21))", FromClaim(z_l2_claim(g))),
+             lemma("(18): the virtual-state bounds", l2_claim(g)),
+             lemma("(19)-(20) as printed (the paper's premise of (21))", z_l2_claim(g)),
              _with(prove_identity(_on_domain(composed - printed_a),
                                   "(21a): sqrt(V2(0)/f1bar) + ||B0 du||/sqrt(2 f1bar) = "
                                   "(sqrt(2 V2(0)) + ||B0 du||)/sqrt(2 f1bar) "
@@ -375,8 +376,8 @@ def _transient_derived_claim(key: str) -> Claim:
     _, c2 = B.lambda_gain_bounds(F1B, F2B)
     _, x2b = B.transient_bounds(V0, WL2, F1B, F2B, F3B, K)
     steps = [_minkowski(),
-             Step("(18): the virtual-state bounds", FromClaim(l2_claim(g))),
-             Step("(19)-(20) as derived", FromClaim(z_l2_derived_claim(g))),
+             lemma("(18): the virtual-state bounds", l2_claim(g)),
+             lemma("(19)-(20) as derived", z_l2_derived_claim(g)),
              prove_identity(_on_domain(composed - x1b), "(21a) = sqrt((19a)) + (18a) ||B0 du||"
                             " (bounds.transient_bounds with V2(0) of (12); on V2(0) >= 0, "
                             "f1bar > 0)"),

@@ -28,7 +28,12 @@ class Inputs:
 def parts(inp: Inputs, progress: Any) -> ReportParts:
     from lgw.theory.lunar.claims import all_claims
     from lgw.theory.lunar.report import coverage_rows, report_spec
-    from lgw.tuning.lunar.report_sections import bounds_table, reference_section, run_scenario
+    from lgw.tuning.lunar.report_sections import (
+        bounds_table,
+        reference_claim,
+        reference_section,
+        run_scenario,
+    )
 
     g = inp.gains
     progress.stage("the reference trajectory (3)-(4)")
@@ -39,7 +44,8 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
         sections.append(sec)
     sections.append(_no_tuner_section(g))
     progress.stage("deriving and judging every claim of seed 001")
-    claims = all_claims(g, scenario)  # every gain-set claim judged for these gains
+    # every gain-set claim judged for these gains; the reference (3)-(4) and Section 5 after
+    claims = all_claims(g, [reference_claim(), *scenario])
     bounds, note = bounds_table(g, measured)
     return ReportParts(claims, report_spec(g, bounds, note), sections, coverage_rows())
 
