@@ -82,7 +82,9 @@ def evidence_supports(ev: Evidence, status: str) -> str | None:
         w = ev.witness
         if not isinstance(w, Witness):
             return "refuted without a witness"
-        if not (w.margin < 0 and w.rechecked_margin is not None and w.rechecked_margin < 0
+        # a strict claim (x > 0) is violated by an exact 0 as well (Witness.strict)
+        neg = (lambda m: m <= 0) if getattr(w, "strict", False) else (lambda m: m < 0)
+        if not (neg(w.margin) and w.rechecked_margin is not None and neg(w.rechecked_margin)
                 and w.recheck_method):
             return "refuted by a witness not re-checked by an independent route"
         return None

@@ -81,6 +81,9 @@ class Witness:
     rechecked_margin: float | None = None
     recheck_method: str = ""
     seed: int | None = None
+    # the claim is strict (x > 0, "positive definite"): a margin of exactly 0 violates it too,
+    # so both margins <= 0 confirm (an exact 0 needs exact routes: no rounding can make it)
+    strict: bool = False
 
     def __getitem__(self, key: str) -> Any:
         """The point's coordinate ``key`` (a witness reads like the case it describes)."""
@@ -88,13 +91,19 @@ class Witness:
 
     @property
     def confirmed(self) -> bool:
+        if self.strict:
+            return (self.margin <= 0 and self.rechecked_margin is not None
+                    and self.rechecked_margin <= 0)
         return (self.margin < 0 and self.rechecked_margin is not None
                 and self.rechecked_margin < 0)
 
     def to_dict(self) -> dict[str, Any]:
-        return _jsonable({"point": dict(self.point), "margin": self.margin,
-                          "method": self.method, "rechecked_margin": self.rechecked_margin,
-                          "recheck_method": self.recheck_method, "seed": self.seed})
+        d = {"point": dict(self.point), "margin": self.margin, "method": self.method,
+             "rechecked_margin": self.rechecked_margin, "recheck_method": self.recheck_method,
+             "seed": self.seed}
+        if self.strict:  # only when set: the records of non-strict witnesses are unchanged
+            d["strict"] = True
+        return _jsonable(d)
 
 
 class Evidence:

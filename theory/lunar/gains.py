@@ -135,6 +135,11 @@ def paper_gains() -> Gains:
                  make_loop("attitude", dict(ATTITUDE_GAINS)))
 
 
+def default_gains() -> Gains:
+    """The built-in gain set: seed 001 Section 5's (``paper_gains``)."""
+    return paper_gains()
+
+
 def from_dict(d: dict[str, Any]) -> Gains:
     """Gains from a mapping {"orbit": {...}, "attitude": {...}}; a missing loop takes the
     paper's values, a given loop must be complete."""

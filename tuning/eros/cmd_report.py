@@ -49,14 +49,15 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
 
     g = inp.gains
     progress.stage("deriving and judging every claim of seed 002")
-    claims = list(all_claims())
+    claims = list(all_claims(g))  # every gain-set claim judged for these gains
     sections = [RS.settling_section(), RS.cubic_section(), RS.gravity_section()]
     if inp.sim:
         from lgw.sim.eros.batch import SimOptions
         from lgw.sim.eros.campaign import monte_carlo, scenario, table
         from lgw.tuning.eros.scenario import claims as scenario_claims
 
-        progress.stage(f"the scenario and a {inp.cases}-case campaign, six variants")
+        progress.stage(f"the scenario and a {inp.cases}-case campaign, six variants; the "
+                       "paper's simulation statements over the gain box and the campaign")
         base = SimOptions()
         scen = scenario(g, base)
         mc = monte_carlo(g, inp.cases, inp.seed, base)

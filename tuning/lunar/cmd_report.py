@@ -30,7 +30,12 @@ class Inputs:
 def parts(inp: Inputs, progress: Any) -> ReportParts:
     from lgw.theory.lunar.claims import all_claims
     from lgw.theory.lunar.report import coverage_rows, report_spec
-    from lgw.tuning.lunar.report_sections import bounds_table, reference_section, run_scenario
+    from lgw.tuning.lunar.report_sections import (
+        bounds_table,
+        reference_claim,
+        reference_section,
+        run_scenario,
+    )
 
     g = inp.gains
     progress.stage("the reference trajectory (3)-(4)")
@@ -42,8 +47,9 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
         sections.extend(secs)
     sections.append(tuning_section(g))
     progress.stage("deriving and judging every claim of seed 001")
-    claims = all_claims(scenario)
-    bounds, note = bounds_table(g, measured)
+    # every gain-set claim judged for these gains; the reference (3)-(4) and Section 5 after
+    claims = all_claims(g, [reference_claim(), *scenario])
+    bounds, note = bounds_table(g, measured, g)  # the Section 5 run flies these gains
     return ReportParts(claims, report_spec(g, bounds, note), sections, coverage_rows())
 
 
