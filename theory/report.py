@@ -147,13 +147,14 @@ class Finding:
 
 
 def witness_text(w: Witness, limit: int = 8) -> str:
-    """A witness in one line: its first ``limit`` coordinates, the margin and the re-check."""
+    """A witness in one line: its first ``limit`` coordinates (a mapping's entries inline),
+    the margin and the independent re-check."""
     items = list(w.point.items())
-    pts = "; ".join(f"{k} = {_short(v)[:70]}" for k, v in items[:limit])
+    pts = "; ".join(f"{k} = {_short(v)[:120]}" for k, v in items[:limit])
     if len(items) > limit:
         pts += f"; ... ({len(items) - limit} more)"
-    return (f"{pts}; margin {fmt(w.margin)}, re-checked {fmt(w.rechecked_margin)} "
-            f"({w.recheck_method})")
+    return ((pts + "; " if pts else "") + f"margin {fmt(w.margin)}, re-checked "
+            f"{fmt(w.rechecked_margin)} ({w.recheck_method})")
 
 
 def findings(claims: Sequence[Claim], reproduce: Mapping[str, str] | None = None

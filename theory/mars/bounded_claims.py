@@ -132,10 +132,30 @@ def _quadrature_search(bg, n: int = 40, seed: int = 0) -> Step:
         m = float(B.slide_time(x0, x1, bg, i)) - q
         if m < worst:
             worst, pt = m, {"axis": i, "x0": x0, "x1": x1, "quad": q}
+    counter = None
+    if worst < 0:
+        from lgw.theory.evidence import Witness
+        counter = Witness(dict(pt), worst, "scipy.integrate.quad vs closed form",
+                          _slide_recheck(bg, pt), "mpmath.quad at 30 digits of int dx/psi(x) "
+                          "from psi's SymPy expression, against the closed form", seed)
     return Step("slide_time >= int dx/psi(x) by adaptive quadrature (this gain set)",
                 Search({"x0": (1, 10**3.5), "x1": (0.01, 1), "axis": (0, 2)},
-                       "scipy.integrate.quad vs closed form", n, worst, pt, seed,
+                       "scipy.integrate.quad vs closed form", n, worst, pt, seed, counter,
                        tolerance=1e-9, budget=f"{n} random (axis, x0, x1)"))
+
+
+def _slide_recheck(bg, pt: dict) -> float:
+    """slide_time - int_x1^x0 dx/psi(x), the integral by mpmath at 30 digits from psi's SymPy
+    expression (an independent route to the closed form and to scipy's quadrature)."""
+    import mpmath
+
+    i = pt["axis"]
+    vals = dict(zip(B.PARAMS, bg.params()[i], strict=False))
+    f = sp.lambdify(X, B.psi().subs(r, X).subs({k: sp.Float(v, 30) for k, v in vals.items()}),
+                    modules="mpmath")  # x = |r| > 0: psi is odd
+    with mpmath.workdps(30):
+        q = mpmath.quad(lambda x: 1 / f(x), [pt["x1"], pt["x0"]])
+    return float(B.slide_time(pt["x0"], pt["x1"], bg, i)) - float(q)
 
 
 def claim_invariants(g=None) -> Claim:
@@ -187,8 +207,9 @@ S_EPS = 1e-7  # m/s
 
 
 def fly_axis(bg, i: int, r0: float, v0: float, t_max: float = 300.0,
-             tol: tuple[float, float] = (0.1, 0.1)) -> dict[str, float]:
-    """One axis of the closed loop by solve_ivp (RK45, rtol = atol = 1e-10) from the SymPy law:
+             tol: tuple[float, float] = (0.1, 0.1), method: str = "RK45") -> dict[str, float]:
+    """One axis of the closed loop by solve_ivp (``method``, RK45 by default; rtol = atol =
+    1e-10) from the SymPy law:
     max |r|, |v|, |u| along the way and the first time |r| <= tol[0] and |v| <= tol[1].
 
     Two phases: the full loop until |s| = S_EPS (a terminal event; the reaching law is not
@@ -207,7 +228,7 @@ def fly_axis(bg, i: int, r0: float, v0: float, t_max: float = 300.0,
     def s_zero(t, y):  # |s| = S_EPS: the rest of the reaching phase lasts < 2 sqrt(S_EPS)/k1
         return abs(y[1] + float(B.psi_np(y[0], bg, i))) - S_EPS
     s_zero.terminal = True
-    kw = {"rtol": 1e-10, "atol": 1e-10, "dense_output": True}
+    kw = {"rtol": 1e-10, "atol": 1e-10, "dense_output": True, "method": method}
     one = solve_ivp(rhs, (0.0, t_max), [r0, v0], events=s_zero, **kw)
     t1 = float(one.t[-1])
     ts = np.linspace(0.0, t1, max(int(t1 * 50), 2))
@@ -223,6 +244,29 @@ def fly_axis(bg, i: int, r0: float, v0: float, t_max: float = 300.0,
     t_land = float(ts[np.argmax(inside)]) if inside.any() else np.inf
     return {"r": float(np.max(np.abs(rr))), "v": float(np.max(np.abs(vv))),
             "u": float(np.max(np.abs(u))), "t_land": t_land}
+
+
+RECHECK_METHOD = "Radau"  # the independent route of a box-bound violation (implicit, stiff)
+
+
+def _box_recheck(gains, bounds, pt: dict) -> float:
+    """The relative margin of the worst point's quantity, re-flown by ``RECHECK_METHOD``."""
+    i = pt["axis"]
+    d = bounds(gains, i, TABLE3_AXES[i])
+    o = fly_axis(gains, i, pt["r0"], pt["v0"], t_max=1.2 * d["T_land"] + 5,
+                 method=RECHECK_METHOD)
+    bound = {"r": d["R_b"], "v": d["V_b"], "u": d["u_b"], "t_land": d["T_land"]}[pt["quantity"]]
+    return (bound - o[pt["quantity"]]) / bound
+
+
+def _box_witness(gains, bounds, worst: float, pt: dict, seed: int):
+    """A violation of the box bounds as a witness, re-checked by another integrator."""
+    from lgw.theory.evidence import Witness
+    if not worst < 0:
+        return None
+    return Witness(dict(pt), worst, "solve_ivp RK45 1e-10 (two phases) on the SymPy law",
+                   _box_recheck(gains, bounds, pt), f"the same flight by solve_ivp "
+                   f"{RECHECK_METHOD} rtol = atol = 1e-10", seed)
 
 
 def _worst_box_margin(gains, bounds, fixed_points, rng, n: int):
@@ -257,7 +301,34 @@ def _ivp_search(bg, n: int = 12, seed: int = 1) -> Step:
                 "corners, r0 = 0 and random states)",
                 Search({"box": "seed 000 Table III per axis", "gains": "this gain set"},
                        "solve_ivp RK45 1e-10 (two phases) on the SymPy law", evals, worst, pt, seed,
-                       relative=True, budget=f"5 corner states + {n} random states per axis"))
+                       _box_witness(bg, B.axis_box_bounds, worst, pt, seed), relative=True,
+                       budget=f"5 corner states + {n} random states per axis"))
+
+
+def _box_numbers(bg, bounds) -> dict[str, dict[str, float]]:
+    """The box bounds per axis (Table III), the numbers a gain-set claim reports."""
+    keys = ("R_b", "V_b", "u_b", "T_s", "T_r", "T_land")
+    out = {}
+    for i, box in enumerate(TABLE3_AXES):
+        d = bounds(bg, i, box)
+        out["xyz"[i]] = {k: float(d[k]) for k in keys if k in d}
+    return out
+
+
+def _bounded_of(g) -> tuple:
+    """The [bounded] table of gain set ``g`` (``Gains.extra``) and where it came from."""
+    extra = getattr(g, "extra", None) if g is not None else None
+    has = bool(extra) and "bounded" in extra
+    return B.bounded_from_extra(extra), ("the gain file's [bounded] table" if has
+                                         else "DEFAULT_BOUNDED (no [bounded] table)")
+
+
+def _sat_of(g) -> tuple:
+    from lgw.theory.mars import bounded_sat as BS
+    extra = getattr(g, "extra", None) if g is not None else None
+    has = bool(extra) and BS.TABLE in extra
+    return BS.sat_from_extra(extra), ("the gain file's [bounded-sat] table" if has
+                                      else "DEFAULT_SAT (no [bounded-sat] table)")
 
 
 @cache
@@ -298,6 +369,12 @@ def all_claims() -> tuple[Claim, ...]:
     """The bounded laws' claims that hold or fail whatever the valid gains."""
     return (claim_derivative(), claim_finite(), claim_psi_monotone(), claim_slide_time(),
             claim_fixed_time(), claim_sat_invariance(), claim_sat_outside(), claim_sat_growth())
+
+
+def gain_set_claims(g=None) -> list[Claim]:
+    """The bounded laws' box bounds judged for the ``[bounded]`` and ``[bounded-sat]`` tables
+    of gain set ``g`` (their defaults where the file has none)."""
+    return [claim_invariants(g), claim_sat_bounds(g)]
 
 
 @cache
@@ -437,65 +514,8 @@ def _sat_ivp_search(sg, n: int = 4, seed: int = 2) -> Step:
                 "Table III per axis: corners, r0 = 0 and random states)",
                 Search({"box": "seed 000 Table III per axis", "gains": "this gain set"},
                        "solve_ivp RK45 1e-10 (two phases) on the SymPy law", evals, worst, pt,
-                       seed, relative=True, budget=f"6 corner states + {n} random states per "
-                       "axis"))
-
-
-def claim_sat_bounds(g=None) -> Claim:
-    """The box bounds of ``axis_box_bounds_sat`` (time, state, command) for the
-    ``[bounded-sat]`` table of gain set ``g`` (the default without one)."""
-    from lgw.theory.mars import bounded_sat as BS
-    sg, src = _sat_of(g)
-    lemmas = [Step(f"[claim {c.id}] {c.title}", FromClaim(c))
-              for c in (claim_sat_outside(), claim_sat_invariance(), claim_sat_growth(),
-                        claim_derivative(), claim_slide_time(), claim_psi_monotone())]
-    hyps = _sat_hypothesis_steps(sg)
-    settle = Step("in Omega s' = -k1 sig(s,e1) - k2 sig(s,e2): s reaches 0 within the exact "
-                  "T_s(S) from |s| <= S", Cited(FIXED_TIME_REF, "fixed-time settling of the "
-                                                "reaching law", (lemmas[3], hyps[0])))
-    steps = [*lemmas, *hyps, settle, _sat_composition_step()]
-    return Claim("bounded-sat-bounds", "issue 17", "Saturated variant: state, command and time "
-                 "bounds over a box", "(not in seed 000)", "|r| <= R_b, |v| <= V_b, |a+g+a_m| "
-                 "<= u_b, landing by T_land (lgw.theory.mars.bounded_sat.axis_box_bounds_sat, "
-                 f"evaluated in double precision) for the gains of {src}", steps, law=NAME_SAT,
-                 scope="gain-set", searches=(_sat_cells_search(sg), _sat_ivp_search(sg)),
-                 numbers={"gains": src, "bounds": _box_numbers(sg, BS.axis_box_bounds_sat)},
-                 statement="workbench")
-
-
-NAME_SAT = "bounded-sat"
-
-
-def _box_numbers(bg, bounds) -> dict[str, dict[str, float]]:
-    """The box bounds per axis (Table III), the numbers a gain-set claim reports."""
-    keys = ("R_b", "V_b", "u_b", "T_s", "T_r", "T_land")
-    out = {}
-    for i, box in enumerate(TABLE3_AXES):
-        d = bounds(bg, i, box)
-        out["xyz"[i]] = {k: float(d[k]) for k in keys if k in d}
-    return out
-
-
-def _bounded_of(g) -> tuple:
-    """The [bounded] table of gain set ``g`` (``Gains.extra``) and where it came from."""
-    extra = getattr(g, "extra", None) if g is not None else None
-    has = bool(extra) and "bounded" in extra
-    return B.bounded_from_extra(extra), ("the gain file's [bounded] table" if has
-                                         else "DEFAULT_BOUNDED (no [bounded] table)")
-
-
-def _sat_of(g) -> tuple:
-    from lgw.theory.mars import bounded_sat as BS
-    extra = getattr(g, "extra", None) if g is not None else None
-    has = bool(extra) and BS.TABLE in extra
-    return BS.sat_from_extra(extra), ("the gain file's [bounded-sat] table" if has
-                                      else "DEFAULT_SAT (no [bounded-sat] table)")
-
-
-def gain_set_claims(g=None) -> list[Claim]:
-    """The bounded laws' box bounds judged for the ``[bounded]`` and ``[bounded-sat]`` tables
-    of gain set ``g`` (their defaults where the file has none)."""
-    return [claim_invariants(g), claim_sat_bounds(g)]
+                       seed, _box_witness(sg, BS.axis_box_bounds_sat, worst, pt, seed),
+                       relative=True, budget=f"6 corner states + {n} random states per axis"))
 
 
 def _sat_hypothesis_steps(sg) -> list[Step]:
@@ -530,3 +550,30 @@ def _sat_composition_step() -> Step:
                     "T_land <= max(T_out + T_s(S_entry), T_s(S_start)) + T_r: s reaches 0 by "
                     "A = T_out + T_s(S_entry) (start outside Omega) or B = T_s(S_start) (start "
                     "inside), then the sliding phase takes at most T_r")
+
+
+def claim_sat_bounds(g=None) -> Claim:
+    """The box bounds of ``axis_box_bounds_sat`` (time, state, command) for the
+    ``[bounded-sat]`` table of gain set ``g`` (the default without one)."""
+    from lgw.theory.mars import bounded_sat as BS
+    sg, src = _sat_of(g)
+    lemmas = [Step(f"[claim {c.id}] {c.title}", FromClaim(c))
+              for c in (claim_sat_outside(), claim_sat_invariance(), claim_sat_growth(),
+                        claim_derivative(), claim_slide_time(), claim_psi_monotone())]
+    hyps = _sat_hypothesis_steps(sg)
+    settle = Step("in Omega s' = -k1 sig(s,e1) - k2 sig(s,e2): s reaches 0 within the exact "
+                  "T_s(S) from |s| <= S", Cited(FIXED_TIME_REF, "fixed-time settling of the "
+                                                "reaching law", (lemmas[3], hyps[0])))
+    steps = [*lemmas, *hyps, settle, _sat_composition_step()]
+    return Claim("bounded-sat-bounds", "issue 17", "Saturated variant: state, command and time "
+                 "bounds over a box", "(not in seed 000)", "|r| <= R_b, |v| <= V_b, |a+g+a_m| "
+                 "<= u_b, landing by T_land (lgw.theory.mars.bounded_sat.axis_box_bounds_sat, "
+                 f"evaluated in double precision) for the gains of {src}", steps, law=NAME_SAT,
+                 scope="gain-set", searches=(_sat_cells_search(sg), _sat_ivp_search(sg)),
+                 numbers={"gains": src, "bounds": _box_numbers(sg, BS.axis_box_bounds_sat)},
+                 statement="workbench")
+
+
+NAME_SAT = "bounded-sat"
+
+

@@ -2,12 +2,24 @@
 
 Everything here is derived from the SymPy expressions of ``lgw.theory.mars.mss``; no printed
 formula is taken as true, and no status is written by hand: every step carries the evidence a
-prover made (``lgw.theory.provers``).  A step that rests on another claim carries that claim's
-own steps (``_inherit``), so its verdict can never be stronger than theirs.
+prover made (``lgw.theory.provers``).  A step that rests on another claim uses it as a lemma
+(``FromClaim``: its verdict carries over, and a refuted or unproven lemma leaves the step
+unproven), so a conclusion is never stronger than what it rests on.
 
-``all_claims()`` lists the claims that hold or fail whatever the valid gains (scope
+Every step computes from the law, plant and gains in use: V2' is derived from the law's closed
+loop (a witness, drawn inside the gain hypotheses ``mss.SAMPLE_RANGES``, refutes a printed
+identity), the command's exponents are read from the law, the reduced loops take their s2
+drift from the law.  Change the law and exactly the verdicts whose mathematics changed change
+(tests/mars/test_mutations.py).
+
+Where the workbench corrects a printed statement there are two claims: the paper's, judged as
+printed (``statement="paper"``, refuted with its witness), and the workbench's correction
+(``statement="workbench"``, ``corrects`` = the paper claim's id).
+
+``general_claims()`` lists the claims that hold or fail whatever the valid gains (scope
 "all-gains") in report order; ``all_claims(gains)`` adds ``gain_set_claims(gains)``, the
-gain-dependent statements judged for that gain set (scope "gain-set").
+gain-dependent statements judged for that gain set (scope "gain-set"), and the claims on the
+paper's simulations (``lgw.theory.mars.scenario_claims``, from the report layer's record).
 """
 
 from __future__ import annotations
@@ -104,12 +116,6 @@ def _settling_exprs() -> dict[str, tuple]:
                                        evaluate=False)))}
 
 
-def _inherit(claim: Claim) -> tuple[Step, ...]:
-    """The steps of ``claim``, named after it: a step that uses a claim carries its evidence."""
-    return tuple(Step(f"[claim {claim.id}] {s.statement}", s.evidence, s.expr)
-                 for s in claim.steps)
-
-
 def _lemma(claim: Claim, what: str = "") -> Step:
     """``claim`` used as a lemma: its verdict carries over (a refuted or unproven lemma leaves
     the step unproven: the conclusion rests on something not shown)."""
@@ -142,10 +148,6 @@ def prove_branches(expr: sp.Expr, reals: tuple[sp.Symbol, ...], statement: str) 
 def _dbeta() -> sp.Expr:
     """d/ds1 (beta1 sig(s1,q1) + beta2 sig(s1,q2)) = beta1 q1|s1|^(q1-1) + beta2 q2|s1|^(q2-1)."""
     return b1 * q1 * sp.Abs(r) ** (q1 - 1) + b2 * q2 * sp.Abs(r) ** (q2 - 1)
-
-
-def _at(expr: sp.Expr, pt: dict) -> sp.Expr:
-    return sp.nsimplify(sp.N(expr.subs(pt), 30), rational=False)
 
 
 # --- (15), (16), (19)-(20), (18) ---------------------------------------------------------
@@ -241,6 +243,41 @@ def v1dot_vector_claim() -> Claim:
                  "q2 = 2); the corrected form is claim V1dot-vector-corrected.", steps)
 
 
+@cache
+def v1dot_vector_corrected_claim() -> Claim:
+    steps = [
+        _power_mean_search(0.01, 0.99, lambda q: 1.0,
+                           "sum_i |s_i|^(q1+1) >= (sum_i s_i^2)^((q1+1)/2) for 0 < q1 < 1", 0),
+        _power_mean_search(1.01, 4.0, lambda q: 3 ** ((1 - q) / 2),
+                           "sum_i |s_i|^(q2+1) >= 3^((1-q2)/2) (sum_i s_i^2)^((q2+1)/2) for "
+                           "q2 > 1 (power-mean inequality)", 1),
+    ]
+    return Claim("V1dot-vector-corrected", "(19)-(20), vector form",
+                 "Lyapunov derivative of the first surface, 3-axis form, corrected",
+                 "V1 = s1^T s1/2, V1' <= -(beta1 2^((q1+1)/2) V1^((q1+1)/2) + beta2 2^((q2+1)/2) "
+                 "V1^((q2+1)/2)) with diagonal gain matrices",
+                 "With scalar gains the q1 term holds and the q2 term needs the factor "
+                 "3^((1-q2)/2).  The time bound (18) holds per axis anyway: the axes are "
+                 "decoupled (claim T1).", steps, statement="workbench", corrects="V1dot-vector")
+
+
+def _report_search(search_id: str, starts: bool = False) -> Step:
+    """One full-domain search of ``lgw.theory.mars.searches`` at the report's budget, as a
+    step (``starts``: begin from the worst points of the larger FULL-budget run).  A search
+    whose reduced dynamics assume the corrected law's exact cancellation is not run when the
+    law in force does not cancel (its drift, computed from the law, is not 0): unproven."""
+    from lgw.theory.mars import searches
+
+    if search_id in NEEDS_EXACT_CANCELLATION and not M.s2_drift_vanishes("corrected"):
+        pos, _ = M.s2_drift_branches("corrected")
+        return Step(searches.STATEMENTS[search_id], Unproven(
+            "not searched: the search's reduced loop takes s2' = -alpha1 sig(s2,g1) - alpha2 "
+            "sig(s2,g2) (+ a_p) exactly, and the corrected law in force leaves the drift "
+            f"{sp.sstr(pos)} (s1 = x > 0) in s2'"))
+    run = searches.run_from_known if starts else searches.run
+    return Step(searches.STATEMENTS[search_id], run(search_id, REPORT_SEARCH_BUDGET))
+
+
 def _route_identity(gain1, gain2, e1_, e2_) -> tuple[Step, Step]:
     aV, bV = gain1 * 2 ** ((e1_ + 1) / 2), gain2 * 2 ** ((e2_ + 1) / 2)
     pV, gV = (e1_ + 1) / 2, (e2_ + 1) / 2
@@ -313,6 +350,45 @@ def s2dot24_claim() -> Claim:
                  "(24) substitutes the reaching law (16) for s1' = v, which holds only on s2 = 0 "
                  "(claim s2dot-24-corrected).", steps,
                  paper_expr=(sp.Eq(S2DOT, _disp(_printed24(acc)), evaluate=False),))
+
+
+def _printed24(acc: sp.Expr) -> sp.Expr:
+    """Seed 000 (24) as printed (the paper's formula, judged as printed)."""
+    return (acc + M.grav + M.am - b1**2 * q1 * sig(r, 2 * q1 - 1)
+            - b2**2 * q2 * sig(r, 2 * q2 - 1) - b1 * b2 * (q1 + q2) * sig(r, q1 + q2 - 1))
+
+
+@cache
+def s2dot24_corrected_claim() -> Claim:
+    acc = sp.Symbol("a", real=True)
+    resid = M.time_derivative(M.surface2(), acc) - _printed24(acc)
+    steps = [prove_branches(_surface_coords(resid - _dbeta() * M.surface2()), (r,),
+                            "true s2' - printed (24) = (beta1 q1|s1|^(q1-1) + beta2 q2 "
+                            "|s1|^(q2-1)) s2"),
+             prove_branches(resid.subs(v, M.reaching_law_rhs(r)), (r,),
+                            "on s2 = 0 (v given by (16)) the printed (24) is exact")]
+    return Claim("s2dot-24-corrected", "(24)", "Second-surface derivative with the command, "
+                 "corrected", "(24) as printed", "In general s2' = (24) + (beta1 q1|s1|^(q1-1) + "
+                 "beta2 q2|s1|^(q2-1)) s2; on s2 = 0 it is (24).", steps,
+                 paper_expr=(sp.Eq(S2DOT, _disp(_printed24(acc)), evaluate=False),),
+                 derived_expr=(sp.Eq(S2DOT, _disp(_printed24(acc)) + _disp(_dbeta()) * S2,
+                                     evaluate=False),),
+                 statement="workbench", corrects="s2dot-24")
+
+
+def _v_route_step(gain1, gain2, e1_, e2_, s: sp.Symbol, Vs: sp.Symbol, name: str) -> Step:
+    """-gain1|s|^(e1+1) - gain2|s|^(e2+1) = Lemma 2's form in V = s^2/2 (equality, per axis)."""
+    target = -gain1 * sp.Abs(s) ** (e1_ + 1) - gain2 * sp.Abs(s) ** (e2_ + 1)
+    form = _lemma2_rhs(gain1, gain2, e1_, e2_, Vs).subs(Vs, s**2 / 2)
+    return prove_branches(target - form, (s,), f"= -({sp.sstr(gain1)} 2^(({sp.sstr(e1_)}+1)/2) "
+                          f"{name}^(({sp.sstr(e1_)}+1)/2) + ...) with {name} = s^2/2 (equality)")
+
+
+def _branch_display(expr_rs2: sp.Expr) -> sp.Expr | None:
+    """expr(r, S2) reduced on r = x > 0 and shown with |s1| for x (None if it is 0 there)."""
+    x = sp.Symbol("x", positive=True)
+    e = sp.simplify(sp.powsimp(sp.expand(expr_rs2.subs(r, x)), force=True))
+    return None if e == 0 else _disp(e.subs(x, sp.Abs(S1)))
 
 
 def _v2dot_residual(law: str, with_ap: bool = False) -> sp.Expr:
@@ -437,18 +513,6 @@ def t2_claim(law: str) -> Claim:
 
 # --- How T1 and T2 combine: the landing time ---------------------------------------------
 
-def _landing_time_reduced(gd: dict, s1_0: float, s2_0: float, t_end: float) -> float:
-    tr = surface_trajectory("corrected", gd, s1_0, s2_0, t_end, n_out=8001)
-    out = np.where((np.abs(tr["s1"]) > 1e-6) | (np.abs(tr["s2"]) > 1e-6))[0]
-    return float(tr["t"][out[-1]]) if len(out) else 0.0
-
-
-def _balanced_bound(gd: dict) -> float:
-    return float(polyakov_bound(gd["beta1"] * 2 ** ((gd["q1"] + 1) / 2),
-                                gd["beta2"] * 2 ** ((gd["q2"] + 1) / 2),
-                                (gd["q1"] + 1) / 2, (gd["q2"] + 1) / 2))
-
-
 def _composition_step() -> Step:
     t_s2, t_s1, T1_, T2_, t_land = sp.symbols("t_s2 t_s1 T1 T2 t_land", real=True)
     return prove_z3(sp.Le(t_land, T1_ + T2_),
@@ -479,6 +543,26 @@ def landing_claim() -> Claim:
                  paper_expr=(sp.Le(T_LAND, sp.Max(T1S, T2S), evaluate=False),))
 
 
+@cache
+def landing_corrected_claim() -> Claim:
+    # The sound bound: s2 reaches 0 by T2 and stays (V2' <= 0), then s1 follows (16).
+    s_res = prove_identity(
+        _surface_coords(M.closed_loop("corrected").s2dot.subs(ap, 0)).subs(S2, 0),
+        "s2 = 0 is invariant: s2' = 0 on s2 = 0 (corrected law)")
+    steps = [_lemma(t2_claim("corrected"), "s2 reaches 0 within (26)"), s_res,
+             _lemma(surface_claim(), "on s2 = 0, s1 obeys (16)"),
+             _lemma(t1_claim(), "s1 reaches 0 within (18) under (16)"), _composition_step()]
+    return Claim("landing-time-corrected", "Part 1 (whole mission), Remark 1 tuning rule",
+                 "The landing-time bound: T2 + T1",
+                 "'for the whole mission, the maximum time is 74.5780 s' = max{T1, T2}",
+                 "The sound bound is T2 + T1 per axis (exact: T2* + T1*, lgw.theory.mars.bounds"
+                 ".landing_time_bound).", steps, law="corrected",
+                 paper_expr=(sp.Le(T_LAND, sp.Max(T1S, T2S), evaluate=False),),
+                 derived_expr=(sp.Le(T_LAND, T1S + T2S, evaluate=False),
+                               sp.Le(T_LAND, T1X + T2X, evaluate=False)),
+                 statement="workbench", corrects="landing-time")
+
+
 # --- Remark 1: minimum tf -------------------------------------------------------------------
 
 @cache
@@ -503,6 +587,96 @@ def remark1_claim() -> Claim:
                  "Printed formulas hold only for r0 < 0 (tf1) and fail for v0 > 0 or z (tf2); "
                  "the corrected bound is claim remark1-corrected.", steps,
                  numbers={"printed_per_axis": printed.tolist(), "a_max": a_max})
+
+
+@cache
+def remark1_corrected_claim() -> Claim:
+    a_max = THRUST_MAX_AXIS / M0
+    derived = tf_min(R0, V0, a_max, G_MARS)
+    A, gs = sp.symbols("a_max g", real=True)
+    u, acc, d, tt, S = sp.symbols("u acc d t S", real=True)
+    vv, dec = sp.symbols("v dec", real=True)
+    gz = float(np.max(np.abs(G_MARS)))
+    taylor = Cited("Taylor's theorem with integral remainder (any analysis text, e.g. Rudin, "
+                   "Principles, Thm 5.15)", "|a_i| <= a_max gives distance-to-go >= d - u t - "
+                   "acc t^2/2 and speed >= |v0| - dec t, acc = a_max + g.(toward target), "
+                   "dec = a_max - sgn(v0) g_i",
+                   (prove_arb(A - sp.Abs(gs), {A: (a_max,) * 2, gs: (gz,) * 2},
+                              f"acc, dec > 0: a_max = {THRUST_MAX_AXIS / 1e3:g} kN / {M0:g} kg "
+                              f"exceeds max_i |g_i| = {gz:g} m/s^2", strict=True,
+                              recheck=lambda pt: pt["a_max"] - abs(pt["g"])),))
+    steps = [
+        Step("corrected bounds rest on integrating the acceleration bound twice", taylor),
+        prove_z3(sp.Gt(d - u * tt - acc * tt**2 / 2, 0),
+                 [sp.Gt(acc, 0), sp.Gt(d, 0), sp.Ge(tt, 0), sp.Ge(S, 0),
+                  sp.Eq(S**2, u**2 + 2 * acc * d), sp.Lt(acc * tt, -u + S)],
+                 "no |a_i| <= a_max reaches r_i = 0 before (-u + sqrt(u^2 + 2 acc |r0|))/acc: "
+                 "the distance to go is still > 0 (S = the square root)"),
+        prove_z3(sp.Gt(vv - dec * tt, 0), [sp.Gt(dec, 0), sp.Gt(vv, 0), sp.Ge(tt, 0),
+                                           sp.Lt(dec * tt, vv)],
+                 "nor stops before |v0|/(a_max - sgn(v0) g_i): the speed is still > 0"),
+    ]
+    return Claim("remark1-corrected", "Remark 1", "Least landing time under a thrust limit, "
+                 "corrected", "tf >= max_i {tf1i, tf2i} (Remark 1 as printed)",
+                 "Per-axis lower bound lgw.theory.mars.bounds.tf_min: (-u + sqrt(u^2 + 2 acc "
+                 "|r0|))/acc and |v0|/(a_max - sgn(v0) g_i).  Use a_max = F_max/m_min for a "
+                 "bound valid at every mass.", steps,
+                 numbers={"derived_per_axis": derived.tolist(), "a_max": a_max},
+                 statement="workbench", corrects="remark1")
+
+
+def _essential_condition(exps: list[sp.Expr], hyps: list[sp.Basic]) -> sp.Basic:
+    """And(e >= 0) without the exponents the hypotheses already make >= 0 (z3), reduced to
+    an interval when one symbol is left (for the claim's text)."""
+    from lgw.theory.provers import prove_z3
+
+    keep = [e for e in exps
+            if prove_z3(sp.GreaterThan(e, 0, evaluate=False), hyps, "implied").status
+            != "proved"]
+    if not keep:
+        return sp.true
+    syms = set().union(*(e.free_symbols for e in keep))
+    if len(syms) == 1:
+        (q,) = syms
+        return sp.reduce_inequalities([sp.Ge(e, 0) for e in keep]
+                                      + [h for h in hyps if h.free_symbols == {q}], q)
+    return sp.And(*(sp.Ge(e, 0) for e in keep))
+
+
+def command_exponents(law_expr: sp.Expr) -> list[sp.Expr]:
+    """The exponent of every power of an absolute value and of every signed power sig(., e)
+    in ``law_expr``, read from the expression: the command is bounded on bounded sets of
+    states iff none is negative (a nonnegative power of a bounded quantity is bounded; a
+    negative one of |s1| grows without bound as s1 -> 0)."""
+    out = {p.exp for p in law_expr.atoms(sp.Pow) if isinstance(p.base, sp.Abs)}
+    out |= {f.args[1] for f in law_expr.atoms(sig)}
+    return sorted(out, key=sp.default_sort_key)
+
+
+def _exponent_slope(law: str, gains: dict[str, float]) -> float:
+    """d log|a| / d log s1 as s1 -> 0 (at s1 = 1e-8 and 1e-10, v = 1, g = a_m = 0) from the
+    lambdified law the simulator runs: an independent, numeric reading of the command's
+    leading power of |s1| (negative: the command grows without bound)."""
+    f = M.law_numeric(law)
+    args = [gains[k] for k in ("beta1", "beta2", "alpha1", "alpha2", "q1", "q2", "g1", "g2")]
+    with np.errstate(all="ignore"):
+        a1_, a2_ = (abs(float(f(x, 1.0, 0.0, 0.0, *args))) for x in (1e-8, 1e-10))
+    if not (math.isfinite(a1_) and math.isfinite(a2_)) or a1_ == 0 or a2_ == 0:
+        return -math.inf
+    return math.log(a1_ / a2_) / math.log(1e-8 / 1e-10)
+
+
+def _bounded_step(law: str, exps: list[sp.Expr], point: dict, statement: str) -> Step:
+    """Every exponent >= 0 at the gain point (Arb on a point box); a negative one is a
+    witness, re-checked by the numeric slope of the law's command near s1 = 0."""
+    gains = {s_.name: float(val) for s_, val in point.items()}
+    free = set().union(*(e.free_symbols for e in exps)) if exps else set()
+    box = {s_: (float(val), float(val)) for s_, val in point.items() if s_ in free}
+    full = {**{k: 1.0 for k in ("beta1", "beta2", "alpha1", "alpha2")}, **gains}
+    return prove_arb(sp.Min(*exps) if len(exps) > 1 else exps[0], box, statement,
+                     recheck=lambda pt: _exponent_slope(law, full),
+                     recheck_method="the slope d log|a| / d log s1 of the lambdified command "
+                                    "(the simulator's) between s1 = 1e-10 and 1e-8, v = 1")
 
 
 # --- Bounded command ---------------------------------------------------------------------
@@ -641,6 +815,14 @@ def _neighbourhood_steps(gain1, gain2, e1_, e2_, eta, theta, name: str) -> tuple
     return (*steps, inv)
 
 
+def _t4(law: str, base: str) -> tuple[str, dict]:
+    """Claim id and the statement fields of a Theorem 4 claim judged on ``law``: the paper's
+    statement is about the printed law (25); the corrected law's is the workbench's."""
+    if law == "printed":
+        return base, {"law": "printed"}
+    return f"{base}-corrected", {"law": "corrected", "statement": "workbench", "corrects": base}
+
+
 @cache
 def s2_neighborhood_claim(law: str = "corrected") -> Claim:
     cid, kw = _t4(law, "s2-neighborhood")
@@ -727,6 +909,12 @@ def t1_practical_claim(law: str = "corrected") -> Claim:
                                      evaluate=False),), **kw)
 
 
+def _t3_paper_argument() -> Step:
+    return identity_at(_surface_coords(v) - M.reaching_law_rhs(r), {r: 0, S2: 1},
+                       "the paper's argument for max: s1 obeys the reaching law from t = 0, "
+                       "i.e. s1' - (16) = 0 for every state (it is s2)")
+
+
 @cache
 def t3_claim() -> Claim:
     """(32) as printed: no proof (the paper's argument is invalid, remark); the full-domain
@@ -741,6 +929,25 @@ def t3_claim() -> Claim:
                  searches=(_report_search("T3", starts=True),), remarks=(_t3_paper_argument(),),
                  paper_expr=(sp.Le(T3S, sp.Max(sp.Symbol("T_(40)"), sp.Symbol("T_(45)")),
                                    evaluate=False),))
+
+
+@cache
+def t3_corrected_claim() -> Claim:
+    t_s2, t_s1, T1_, T2_, t_land = sp.symbols("t_s2 t_s1 T45 T40 t_land", real=True)
+    comp = prove_z3(sp.Le(t_land, T1_ + T2_),
+                    [sp.Le(t_land, t_s2 + t_s1), sp.Le(t_s2, T2_), sp.Le(t_s1, T1_),
+                     sp.Ge(t_s2, 0), sp.Ge(t_s1, 0)],
+                    "time from t = 0 to (31) <= (40) + (45): s2 enters (39) by (40), then s1 "
+                    "enters (31) within (45)")
+    steps = [_lemma(t2_practical_claim("corrected"), "s2 enters (39) within (40)"),
+             _lemma(t1_practical_claim("corrected"), "then s1 enters (31) within (45)"), comp]
+    return Claim("T3-corrected", "(32)", "Time to land in the neighbourhood under disturbance, "
+                 "corrected", "T3i <= max{(40), (45)}", "The sound bound is (40) + (45).", steps,
+                 law="corrected", statement="workbench", corrects="T3",
+                 paper_expr=(sp.Le(T3S, sp.Max(sp.Symbol("T_(40)"), sp.Symbol("T_(45)")),
+                                   evaluate=False),),
+                 derived_expr=(sp.Le(T3S, sp.Symbol("T_(40)") + sp.Symbol("T_(45)"),
+                                     evaluate=False),))
 
 
 # printed numbers of seed 000 (Part 1 and Part 2), and their rounding (4 decimals)
@@ -839,6 +1046,22 @@ def hypothesis1_claim() -> Claim:
                  "(47) violates the norm bound with a_pMAX = 20 (||a_p|| = 20 sqrt 3 at "
                  "t = pi/2); the per-axis reading is claim hypothesis1-47-per-axis.",
                  steps, scope="scenario")
+
+
+@cache
+def hypothesis1_per_axis_claim() -> Claim:
+    t_ = sp.Symbol("t", real=True)
+    amp = sp.Integer(20)
+    steps = [prove_identity(amp**2 - (amp * sp.sin(t_)) ** 2 - amp**2 * sp.cos(t_) ** 2,
+                            "20^2 - (20 sin t)^2 = 20^2 cos^2 t"),
+             prove_nonneg(amp**2 * sp.cos(t_) ** 2, "20^2 cos^2 t >= 0, so (47) a_p,i = 20 sin t "
+                          "satisfies the per-axis bound |a_p,i| <= 20")]
+    return Claim("hypothesis1-47-per-axis", "Hypothesis 1, (47)", "The test disturbance "
+                 "against the per-axis hypothesis the derivation uses",
+                 "||a_p|| <= a_pMAX (Hypothesis 1) with (47) and a_pMAX = 20",
+                 "The per-axis derivation (37)-(44) only needs |a_p,i| <= a_pMAX, which (47) "
+                 "satisfies.  The workbench reads a_max as the per-axis bound.", steps,
+                 scope="scenario", statement="workbench", corrects="hypothesis1-47")
 
 
 @cache
@@ -972,7 +1195,8 @@ def paper_numbers_gain_claims(g) -> list[Claim]:
                "(18) and (26) evaluated for the gain set by Arb interval arithmetic and compared "
                "with the printed numbers to their rounding.  Numbers: the beta1, alpha1 that "
                "would reproduce them with this set's other gains and exponents.", part1,
-               scope="gain-set", numbers={"reproducing_gains": reproducing_gains(g)})
+               scope="gain-set", numbers={"reproducing_gains": reproducing_gains(g),
+                                          **_bound_numbers(g, ("T1_polyakov", "T2_polyakov"))})
     if g.disturbance is None:
         part2 = [Step("the Part 2 numbers need a_max, theta1, theta2",
                       Unproven("the gain file has no [disturbance] table"))]
@@ -985,8 +1209,19 @@ def paper_numbers_gain_claims(g) -> list[Claim]:
                "(theta1 = 0.2, theta2 = 0.1, a_pMAX = 20)",
                "Evaluated for the gain set and its [disturbance] table by Arb; no gain set can "
                "give both (26) = 30.8217 s and (40) = 131.5173 s with theta1 = 0.2 (claim "
-               "paper-numbers).", part2, scope="gain-set")
+               "paper-numbers).", part2, scope="gain-set",
+               numbers=_bound_numbers(g, ("s2_bound", "T2_practical", "s1_bound",
+                                          "T1_practical")) if g.disturbance else {})
     return [c1, c2]
+
+
+def _bound_numbers(g, keys: tuple[str, ...]) -> dict[str, dict[str, float]]:
+    """The gain set's bounds (lgw.theory.mars.bounds.axis_bounds) per axis: a claim's
+    numbers."""
+    from lgw.theory.mars.bounds import axis_bounds
+
+    b = axis_bounds(g)
+    return {k: {ax: float(b[ax][k]) for ax in b} for k in keys}
 
 
 def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
@@ -1112,7 +1347,11 @@ def hypotheses_gain_claim(g) -> Claim:
                  "The practical bounds' hypotheses for this disturbance table",
                  "Theorem 4 under Hypothesis 1, tested with (47)",
                  "Whether the gain file's a_max covers the paper's own test disturbance (per "
-                 "axis, and in norm as Hypothesis 1 is printed).", steps, scope="gain-set")
+                 "axis, and in norm as Hypothesis 1 is printed).", steps, scope="gain-set",
+                 numbers={} if g.disturbance is None else {
+                     "a_max": g.disturbance.a_max,
+                     "a_max - 20 (per axis)": g.disturbance.a_max - 20.0,
+                     "a_max - 20 sqrt 3 (norm)": g.disturbance.a_max - 20.0 * math.sqrt(3.0)})
 
 
 def tuning_rule_gain_claim(g, tf: float = 30.0) -> Claim:
@@ -1135,7 +1374,7 @@ def tuning_rule_gain_claim(g, tf: float = 30.0) -> Claim:
                  "max_i (18)_i <= tf and max_i (26)_i <= tf, with Part 1's tf = 30 s",
                  "Judged for this gain set; note the rule itself does not bound the landing "
                  "time (claim landing-time: the sound bound is T1 + T2).", steps,
-                 scope="gain-set")
+                 scope="gain-set", numbers=_bound_numbers(g, ("T1_polyakov", "T2_polyakov")))
 
 
 def gain_set_claims(g) -> list[Claim]:
@@ -1184,234 +1423,3 @@ def all_claims(gains=None, comparison=None) -> list[Claim]:
             + scenario_claims.comparison_claims(comparison))
 
 
-@cache
-def v1dot_vector_corrected_claim() -> Claim:
-    steps = [
-        _power_mean_search(0.01, 0.99, lambda q: 1.0,
-                           "sum_i |s_i|^(q1+1) >= (sum_i s_i^2)^((q1+1)/2) for 0 < q1 < 1", 0),
-        _power_mean_search(1.01, 4.0, lambda q: 3 ** ((1 - q) / 2),
-                           "sum_i |s_i|^(q2+1) >= 3^((1-q2)/2) (sum_i s_i^2)^((q2+1)/2) for "
-                           "q2 > 1 (power-mean inequality)", 1),
-    ]
-    return Claim("V1dot-vector-corrected", "(19)-(20), vector form",
-                 "Lyapunov derivative of the first surface, 3-axis form, corrected",
-                 "V1 = s1^T s1/2, V1' <= -(beta1 2^((q1+1)/2) V1^((q1+1)/2) + beta2 2^((q2+1)/2) "
-                 "V1^((q2+1)/2)) with diagonal gain matrices",
-                 "With scalar gains the q1 term holds and the q2 term needs the factor "
-                 "3^((1-q2)/2).  The time bound (18) holds per axis anyway: the axes are "
-                 "decoupled (claim T1).", steps, statement="workbench", corrects="V1dot-vector")
-
-
-def _report_search(search_id: str, starts: bool = False) -> Step:
-    """One full-domain search of ``lgw.theory.mars.searches`` at the report's budget, as a
-    step (``starts``: begin from the worst points of the larger FULL-budget run).  A search
-    whose reduced dynamics assume the corrected law's exact cancellation is not run when the
-    law in force does not cancel (its drift, computed from the law, is not 0): unproven."""
-    from lgw.theory.mars import searches
-
-    if search_id in NEEDS_EXACT_CANCELLATION and not M.s2_drift_vanishes("corrected"):
-        pos, _ = M.s2_drift_branches("corrected")
-        return Step(searches.STATEMENTS[search_id], Unproven(
-            "not searched: the search's reduced loop takes s2' = -alpha1 sig(s2,g1) - alpha2 "
-            "sig(s2,g2) (+ a_p) exactly, and the corrected law in force leaves the drift "
-            f"{sp.sstr(pos)} (s1 = x > 0) in s2'"))
-    run = searches.run_from_known if starts else searches.run
-    return Step(searches.STATEMENTS[search_id], run(search_id, REPORT_SEARCH_BUDGET))
-
-
-def _printed24(acc: sp.Expr) -> sp.Expr:
-    """Seed 000 (24) as printed (the paper's formula, judged as printed)."""
-    return (acc + M.grav + M.am - b1**2 * q1 * sig(r, 2 * q1 - 1)
-            - b2**2 * q2 * sig(r, 2 * q2 - 1) - b1 * b2 * (q1 + q2) * sig(r, q1 + q2 - 1))
-
-
-@cache
-def s2dot24_corrected_claim() -> Claim:
-    acc = sp.Symbol("a", real=True)
-    resid = M.time_derivative(M.surface2(), acc) - _printed24(acc)
-    steps = [prove_branches(_surface_coords(resid - _dbeta() * M.surface2()), (r,),
-                            "true s2' - printed (24) = (beta1 q1|s1|^(q1-1) + beta2 q2 "
-                            "|s1|^(q2-1)) s2"),
-             prove_branches(resid.subs(v, M.reaching_law_rhs(r)), (r,),
-                            "on s2 = 0 (v given by (16)) the printed (24) is exact")]
-    return Claim("s2dot-24-corrected", "(24)", "Second-surface derivative with the command, "
-                 "corrected", "(24) as printed", "In general s2' = (24) + (beta1 q1|s1|^(q1-1) + "
-                 "beta2 q2|s1|^(q2-1)) s2; on s2 = 0 it is (24).", steps,
-                 paper_expr=(sp.Eq(S2DOT, _disp(_printed24(acc)), evaluate=False),),
-                 derived_expr=(sp.Eq(S2DOT, _disp(_printed24(acc)) + _disp(_dbeta()) * S2,
-                                     evaluate=False),),
-                 statement="workbench", corrects="s2dot-24")
-
-
-def _v_route_step(gain1, gain2, e1_, e2_, s: sp.Symbol, Vs: sp.Symbol, name: str) -> Step:
-    """-gain1|s|^(e1+1) - gain2|s|^(e2+1) = Lemma 2's form in V = s^2/2 (equality, per axis)."""
-    target = -gain1 * sp.Abs(s) ** (e1_ + 1) - gain2 * sp.Abs(s) ** (e2_ + 1)
-    form = _lemma2_rhs(gain1, gain2, e1_, e2_, Vs).subs(Vs, s**2 / 2)
-    return prove_branches(target - form, (s,), f"= -({sp.sstr(gain1)} 2^(({sp.sstr(e1_)}+1)/2) "
-                          f"{name}^(({sp.sstr(e1_)}+1)/2) + ...) with {name} = s^2/2 (equality)")
-
-
-def _branch_display(expr_rs2: sp.Expr) -> sp.Expr | None:
-    """expr(r, S2) reduced on r = x > 0 and shown with |s1| for x (None if it is 0 there)."""
-    x = sp.Symbol("x", positive=True)
-    e = sp.simplify(sp.powsimp(sp.expand(expr_rs2.subs(r, x)), force=True))
-    return None if e == 0 else _disp(e.subs(x, sp.Abs(S1)))
-
-
-@cache
-def landing_corrected_claim() -> Claim:
-    # The sound bound: s2 reaches 0 by T2 and stays (V2' <= 0), then s1 follows (16).
-    s_res = prove_identity(
-        _surface_coords(M.closed_loop("corrected").s2dot.subs(ap, 0)).subs(S2, 0),
-        "s2 = 0 is invariant: s2' = 0 on s2 = 0 (corrected law)")
-    steps = [_lemma(t2_claim("corrected"), "s2 reaches 0 within (26)"), s_res,
-             _lemma(surface_claim(), "on s2 = 0, s1 obeys (16)"),
-             _lemma(t1_claim(), "s1 reaches 0 within (18) under (16)"), _composition_step()]
-    return Claim("landing-time-corrected", "Part 1 (whole mission), Remark 1 tuning rule",
-                 "The landing-time bound: T2 + T1",
-                 "'for the whole mission, the maximum time is 74.5780 s' = max{T1, T2}",
-                 "The sound bound is T2 + T1 per axis (exact: T2* + T1*, lgw.theory.mars.bounds"
-                 ".landing_time_bound).", steps, law="corrected",
-                 paper_expr=(sp.Le(T_LAND, sp.Max(T1S, T2S), evaluate=False),),
-                 derived_expr=(sp.Le(T_LAND, T1S + T2S, evaluate=False),
-                               sp.Le(T_LAND, T1X + T2X, evaluate=False)),
-                 statement="workbench", corrects="landing-time")
-
-
-@cache
-def remark1_corrected_claim() -> Claim:
-    a_max = THRUST_MAX_AXIS / M0
-    derived = tf_min(R0, V0, a_max, G_MARS)
-    A, gs = sp.symbols("a_max g", real=True)
-    u, acc, d, tt, S = sp.symbols("u acc d t S", real=True)
-    vv, dec = sp.symbols("v dec", real=True)
-    gz = float(np.max(np.abs(G_MARS)))
-    taylor = Cited("Taylor's theorem with integral remainder (any analysis text, e.g. Rudin, "
-                   "Principles, Thm 5.15)", "|a_i| <= a_max gives distance-to-go >= d - u t - "
-                   "acc t^2/2 and speed >= |v0| - dec t, acc = a_max + g.(toward target), "
-                   "dec = a_max - sgn(v0) g_i",
-                   (prove_arb(A - sp.Abs(gs), {A: (a_max,) * 2, gs: (gz,) * 2},
-                              f"acc, dec > 0: a_max = {THRUST_MAX_AXIS / 1e3:g} kN / {M0:g} kg "
-                              f"exceeds max_i |g_i| = {gz:g} m/s^2", strict=True,
-                              recheck=lambda pt: pt["a_max"] - abs(pt["g"])),))
-    steps = [
-        Step("corrected bounds rest on integrating the acceleration bound twice", taylor),
-        prove_z3(sp.Gt(d - u * tt - acc * tt**2 / 2, 0),
-                 [sp.Gt(acc, 0), sp.Gt(d, 0), sp.Ge(tt, 0), sp.Ge(S, 0),
-                  sp.Eq(S**2, u**2 + 2 * acc * d), sp.Lt(acc * tt, -u + S)],
-                 "no |a_i| <= a_max reaches r_i = 0 before (-u + sqrt(u^2 + 2 acc |r0|))/acc: "
-                 "the distance to go is still > 0 (S = the square root)"),
-        prove_z3(sp.Gt(vv - dec * tt, 0), [sp.Gt(dec, 0), sp.Gt(vv, 0), sp.Ge(tt, 0),
-                                           sp.Lt(dec * tt, vv)],
-                 "nor stops before |v0|/(a_max - sgn(v0) g_i): the speed is still > 0"),
-    ]
-    return Claim("remark1-corrected", "Remark 1", "Least landing time under a thrust limit, "
-                 "corrected", "tf >= max_i {tf1i, tf2i} (Remark 1 as printed)",
-                 "Per-axis lower bound lgw.theory.mars.bounds.tf_min: (-u + sqrt(u^2 + 2 acc "
-                 "|r0|))/acc and |v0|/(a_max - sgn(v0) g_i).  Use a_max = F_max/m_min for a "
-                 "bound valid at every mass.", steps,
-                 numbers={"derived_per_axis": derived.tolist(), "a_max": a_max},
-                 statement="workbench", corrects="remark1")
-
-
-def _essential_condition(exps: list[sp.Expr], hyps: list[sp.Basic]) -> sp.Basic:
-    """And(e >= 0) without the exponents the hypotheses already make >= 0 (z3), reduced to
-    an interval when one symbol is left (for the claim's text)."""
-    from lgw.theory.provers import prove_z3
-
-    keep = [e for e in exps
-            if prove_z3(sp.GreaterThan(e, 0, evaluate=False), hyps, "implied").status
-            != "proved"]
-    if not keep:
-        return sp.true
-    syms = set().union(*(e.free_symbols for e in keep))
-    if len(syms) == 1:
-        (q,) = syms
-        return sp.reduce_inequalities([sp.Ge(e, 0) for e in keep]
-                                      + [h for h in hyps if h.free_symbols == {q}], q)
-    return sp.And(*(sp.Ge(e, 0) for e in keep))
-
-
-def command_exponents(law_expr: sp.Expr) -> list[sp.Expr]:
-    """The exponent of every power of an absolute value and of every signed power sig(., e)
-    in ``law_expr``, read from the expression: the command is bounded on bounded sets of
-    states iff none is negative (a nonnegative power of a bounded quantity is bounded; a
-    negative one of |s1| grows without bound as s1 -> 0)."""
-    out = {p.exp for p in law_expr.atoms(sp.Pow) if isinstance(p.base, sp.Abs)}
-    out |= {f.args[1] for f in law_expr.atoms(sig)}
-    return sorted(out, key=sp.default_sort_key)
-
-
-def _exponent_slope(law: str, gains: dict[str, float]) -> float:
-    """d log|a| / d log s1 as s1 -> 0 (at s1 = 1e-8 and 1e-10, v = 1, g = a_m = 0) from the
-    lambdified law the simulator runs: an independent, numeric reading of the command's
-    leading power of |s1| (negative: the command grows without bound)."""
-    f = M.law_numeric(law)
-    args = [gains[k] for k in ("beta1", "beta2", "alpha1", "alpha2", "q1", "q2", "g1", "g2")]
-    with np.errstate(all="ignore"):
-        a1_, a2_ = (abs(float(f(x, 1.0, 0.0, 0.0, *args))) for x in (1e-8, 1e-10))
-    if not (math.isfinite(a1_) and math.isfinite(a2_)) or a1_ == 0 or a2_ == 0:
-        return -math.inf
-    return math.log(a1_ / a2_) / math.log(1e-8 / 1e-10)
-
-
-def _bounded_step(law: str, exps: list[sp.Expr], point: dict, statement: str) -> Step:
-    """Every exponent >= 0 at the gain point (Arb on a point box); a negative one is a
-    witness, re-checked by the numeric slope of the law's command near s1 = 0."""
-    gains = {s_.name: float(val) for s_, val in point.items()}
-    free = set().union(*(e.free_symbols for e in exps)) if exps else set()
-    box = {s_: (float(val), float(val)) for s_, val in point.items() if s_ in free}
-    full = {**{k: 1.0 for k in ("beta1", "beta2", "alpha1", "alpha2")}, **gains}
-    return prove_arb(sp.Min(*exps) if len(exps) > 1 else exps[0], box, statement,
-                     recheck=lambda pt: _exponent_slope(law, full),
-                     recheck_method="the slope d log|a| / d log s1 of the lambdified command "
-                                    "(the simulator's) between s1 = 1e-10 and 1e-8, v = 1")
-
-
-def _t4(law: str, base: str) -> tuple[str, dict]:
-    """Claim id and the statement fields of a Theorem 4 claim judged on ``law``: the paper's
-    statement is about the printed law (25); the corrected law's is the workbench's."""
-    if law == "printed":
-        return base, {"law": "printed"}
-    return f"{base}-corrected", {"law": "corrected", "statement": "workbench", "corrects": base}
-
-
-def _t3_paper_argument() -> Step:
-    return identity_at(_surface_coords(v) - M.reaching_law_rhs(r), {r: 0, S2: 1},
-                       "the paper's argument for max: s1 obeys the reaching law from t = 0, "
-                       "i.e. s1' - (16) = 0 for every state (it is s2)")
-
-
-@cache
-def t3_corrected_claim() -> Claim:
-    t_s2, t_s1, T1_, T2_, t_land = sp.symbols("t_s2 t_s1 T45 T40 t_land", real=True)
-    comp = prove_z3(sp.Le(t_land, T1_ + T2_),
-                    [sp.Le(t_land, t_s2 + t_s1), sp.Le(t_s2, T2_), sp.Le(t_s1, T1_),
-                     sp.Ge(t_s2, 0), sp.Ge(t_s1, 0)],
-                    "time from t = 0 to (31) <= (40) + (45): s2 enters (39) by (40), then s1 "
-                    "enters (31) within (45)")
-    steps = [_lemma(t2_practical_claim("corrected"), "s2 enters (39) within (40)"),
-             _lemma(t1_practical_claim("corrected"), "then s1 enters (31) within (45)"), comp]
-    return Claim("T3-corrected", "(32)", "Time to land in the neighbourhood under disturbance, "
-                 "corrected", "T3i <= max{(40), (45)}", "The sound bound is (40) + (45).", steps,
-                 law="corrected", statement="workbench", corrects="T3",
-                 paper_expr=(sp.Le(T3S, sp.Max(sp.Symbol("T_(40)"), sp.Symbol("T_(45)")),
-                                   evaluate=False),),
-                 derived_expr=(sp.Le(T3S, sp.Symbol("T_(40)") + sp.Symbol("T_(45)"),
-                                     evaluate=False),))
-
-
-@cache
-def hypothesis1_per_axis_claim() -> Claim:
-    t_ = sp.Symbol("t", real=True)
-    amp = sp.Integer(20)
-    steps = [prove_identity(amp**2 - (amp * sp.sin(t_)) ** 2 - amp**2 * sp.cos(t_) ** 2,
-                            "20^2 - (20 sin t)^2 = 20^2 cos^2 t"),
-             prove_nonneg(amp**2 * sp.cos(t_) ** 2, "20^2 cos^2 t >= 0, so (47) a_p,i = 20 sin t "
-                          "satisfies the per-axis bound |a_p,i| <= 20")]
-    return Claim("hypothesis1-47-per-axis", "Hypothesis 1, (47)", "The test disturbance "
-                 "against the per-axis hypothesis the derivation uses",
-                 "||a_p|| <= a_pMAX (Hypothesis 1) with (47) and a_pMAX = 20",
-                 "The per-axis derivation (37)-(44) only needs |a_p,i| <= a_pMAX, which (47) "
-                 "satisfies.  The workbench reads a_max as the per-axis bound.", steps,
-                 scope="scenario", statement="workbench", corrects="hypothesis1-47")

@@ -96,9 +96,12 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
 
 def reproduce_commands(claims: list[Any], gains_path: str) -> dict[str, str]:
     """claim id -> the command that recomputes that claim alone (its witness in the JSON):
-    the scenario claims need the simulations, the others not."""
+    the claims on the paper's simulations need them (--sim), the others not (--no-sim)."""
+    from lgw.theory.mars.scenario_claims import comparison_claims
+
+    flown = {c.id for c in comparison_claims(None)}
     gains = f" --gains {gains_path}" if gains_path else ""
-    return {c.id: f"lgw report mars{gains}{'' if c.scope == 'scenario' else ' --no-sim'} "
+    return {c.id: f"lgw report mars{gains}{'' if c.id in flown else ' --no-sim'} "
                   f"--claim {c.id} --json" for c in claims}
 
 
