@@ -30,6 +30,14 @@ e1, e2 = sp.symbols("epsilon_1 epsilon_2", positive=True)  # 1 - p k, g k - 1
 theta = sp.Symbol("theta", positive=True)
 p_sym = (1 - e1) / k
 g_sym = (1 + e2) / k
+# The hypotheses as sampling ranges for a witness (pk = 1 - e1 in (0, 1), 0 < theta < 1): an
+# identity that fails is refuted only at a point where the lemma claims it.
+HYPOTHESES = {e1: (0.0, 1.0), theta: (0.0, 1.0)}
+
+
+def _identity(expr: sp.Expr, statement: str) -> Step:
+    """``prove_identity`` with the witness sampler kept inside ``HYPOTHESES``."""
+    return prove_identity(expr, statement, ranges=HYPOTHESES)
 
 
 def polyakov_expr(a_, b_, p_, g_, k_) -> sp.Expr:
@@ -67,7 +75,8 @@ INVARIANCE = "H. K. Khalil, Nonlinear Systems, 3rd ed., Sec. 4.8 (a sublevel set
 def _integral_step(integrand, lo, hi, expected, statement) -> Step:
     val = sp.integrate(integrand, (V, lo, hi), conds="none")
     return Step(statement, identity_evidence(sp.simplify(val - expected),
-                                             method="sympy.integrate, then sympy.simplify"),
+                                             method="sympy.integrate, then sympy.simplify",
+                                             ranges=HYPOTHESES),
                 sp.Eq(sp.Integral(integrand, (V, lo, hi)), expected, evaluate=False))
 
 
@@ -157,10 +166,10 @@ def _substitution_steps() -> tuple[Step, ...]:
     sub2 = _log_ratio(c * Vt**d, t)
     sub3 = _log_ratio(sp.diff(Vt, t) * Vt ** (-k * p_), c ** (-m) * t ** (m - 1) / d)
     return (
-        prove_identity(sp.powsimp(sub1, force=True),
+        _identity(sp.powsimp(sub1, force=True),
                        "a V^p + b V^g = a V^p (1 + c V^d), c = b/a, d = g - p"),
-        prove_identity(sub2, "with V = (t/c)^(1/d): c V^d = t (log form)"),
-        prove_identity(sub3, "(dV/dt) V^(-kp) = c^(-m) t^(m-1)/d, m = (1-kp)/d; hence "
+        _identity(sub2, "with V = (t/c)^(1/d): c V^d = t (log form)"),
+        _identity(sub3, "(dV/dt) V^(-kp) = c^(-m) t^(m-1)/d, m = (1-kp)/d; hence "
                        "dV/(aV^p+bV^g)^k = a^-k c^-m/d * t^(m-1) (1+t)^-k dt (log form)"),
     )
 
@@ -175,9 +184,9 @@ def exact_bound_claim() -> Claim:
     beta_int = sp.integrate(t ** (mm - 1) * (1 + t) ** (-kk), (t, 0, sp.oo), conds="none")
     steps = [
         *_substitution_steps(),
-        prove_identity(beta_int - sp.gamma(mm) * sp.gamma(kk - mm) / sp.gamma(kk),
+        _identity(beta_int - sp.gamma(mm) * sp.gamma(kk - mm) / sp.gamma(kk),
                        "int_0^oo t^(m-1) (1+t)^-k dt = Gamma(m) Gamma(k-m)/Gamma(k)  (0 < m < k)"),
-        prove_identity(sp.simplify(a ** (-k) * c ** (-m) / d * sp.gamma(m) * sp.gamma(k - m)
+        _identity(sp.simplify(a ** (-k) * c ** (-m) / d * sp.gamma(m) * sp.gamma(k - m)
                                    / sp.gamma(k) - exact_expr(a, b, p_, g_, k)),
                        "a^-k c^-m B(m, k-m)/d equals the closed form T*; k - m = (kg-1)/d"),
         # T* <= (3): SymPy's assumptions answer None on the closed forms (unproven); the
@@ -211,7 +220,7 @@ def exact_time_claim() -> Claim:
     res = _log_ratio(lhs, rhs)
     steps = [
         *_substitution_steps(),
-        prove_identity(res, "t = u/(1-u) maps t^(m-1)(1+t)^-k dt to u^(m-1)(1-u)^(k-m-1) du, "
+        _identity(res, "t = u/(1-u) maps t^(m-1)(1+t)^-k dt to u^(m-1)(1-u)^(k-m-1) du, "
                        "u0 = t0/(1+t0), t0 = c V0^d (log form)"),
     ]
     return Claim("exact-time", "(16), not in the paper",
@@ -279,10 +288,10 @@ def theorem1_corrected() -> Claim:
     mono = _lemma2_pointwise()
     dec = prove_nonneg(th**k * X**k, "theta^k X^k > 0: outside (5) V' < 0", strict=True)
     printed6 = 1 / (a**k * th**k * (1 - p_ * k)) + 1 / (b**k * th**k * (g_ * k - 1))
-    scaled = prove_identity(polyakov_expr(th * a, th * b, p_, g_, k) - printed6,
+    scaled = _identity(polyakov_expr(th * a, th * b, p_, g_, k) - printed6,
                             "(6) is Lemma 2's (3) with (a, b) -> (theta a, theta b)")
     steps = [
-        prove_identity(-(X**k) + eta - (-(1 - th**k) * X**k - th**k * X**k + eta),
+        _identity(-(X**k) + eta - (-(1 - th**k) * X**k - th**k * X**k + eta),
                        "(7): -(X)^k + eta = -(1-theta^k) X^k - theta^k X^k + eta"),
         *mono, outside, dec,
         Step("outside the set (5), V' <= -((theta a) V^p + (theta b) V^g)^k < 0: V reaches (5) "

@@ -116,6 +116,13 @@ def _settling_exprs() -> dict[str, tuple]:
                                        evaluate=False)))}
 
 
+def _identity(expr: sp.Expr, statement: str) -> Step:
+    """``prove_identity`` with a failing identity's witness drawn inside the hypotheses of
+    (16), (25) and Theorem 4 (0 < q1, g1 < 1 < q2, g2; 0 < theta1, theta2 < 1)."""
+    return prove_identity(expr, statement, ranges={**M.SAMPLE_RANGES, th1: (0.0, 1.0),
+                                                   th2: (0.0, 1.0)})
+
+
 def _lemma(claim: Claim, what: str = "") -> Step:
     """``claim`` used as a lemma: its verdict carries over (a refuted or unproven lemma leaves
     the step unproven: the conclusion rests on something not shown)."""
@@ -154,7 +161,7 @@ def _dbeta() -> sp.Expr:
 
 @cache
 def surface_claim() -> Claim:
-    steps = [prove_identity(M.surface2().subs(v, M.reaching_law_rhs(r)),
+    steps = [_identity(M.surface2().subs(v, M.reaching_law_rhs(r)),
                             "s2 of (21) vanishes exactly when s1' = v obeys the reaching law (16)")]
     rd = sp.Symbol("r_d", real=True)
     paper = (sp.Eq(S1, sp.Symbol("r", real=True) - rd, evaluate=False),
@@ -258,7 +265,17 @@ def v1dot_vector_corrected_claim() -> Claim:
                  "V1^((q2+1)/2)) with diagonal gain matrices",
                  "With scalar gains the q1 term holds and the q2 term needs the factor "
                  "3^((1-q2)/2).  The time bound (18) holds per axis anyway: the axes are "
-                 "decoupled (claim T1).", steps, statement="workbench", corrects="V1dot-vector")
+                 "decoupled (claim T1).", steps, statement="workbench", corrects="V1dot-vector",
+                 derived_expr=_power_mean_forms())
+
+
+def _power_mean_forms() -> tuple[sp.Basic, ...]:
+    """The two power-mean inequalities of V1dot-vector-corrected (display)."""
+    s = sp.symbols("s_x s_y s_z", real=True)
+    lhs = {e: sum(sp.Abs(x) ** (e + 1) for x in s) for e in (q1, q2)}
+    n2 = sum(x**2 for x in s)
+    return (sp.GreaterThan(lhs[q1], n2 ** ((q1 + 1) / 2), evaluate=False),
+            sp.GreaterThan(lhs[q2], 3 ** ((1 - q2) / 2) * n2 ** ((q2 + 1) / 2), evaluate=False))
 
 
 def _report_search(search_id: str, starts: bool = False) -> Step:
@@ -283,9 +300,9 @@ def _route_identity(gain1, gain2, e1_, e2_) -> tuple[Step, Step]:
     pV, gV = (e1_ + 1) / 2, (e2_ + 1) / 2
     printed = (1 / (gain1 * (1 - e1_) * 2 ** ((e1_ - 1) / 2))
                + 1 / (gain2 * (e2_ - 1) * 2 ** ((e2_ - 1) / 2)))
-    s1 = prove_identity(sp.simplify(SP.polyakov_expr(aV, bV, pV, gV, 1) - printed),
+    s1 = _identity(sp.simplify(SP.polyakov_expr(aV, bV, pV, gV, 1) - printed),
                         "Lemma 2 (3) with k = 1 and the V-route constants equals the printed bound")
-    s2 = prove_identity(SP._log_ratio(SP.exact_expr(aV, bV, pV, gV, 1),
+    s2 = _identity(SP._log_ratio(SP.exact_expr(aV, bV, pV, gV, 1),
                                       SP.exact_expr(gain1, gain2, e1_, e2_, 1)),
                         "T* is the same through V = s^2/2 and through |s| (route-invariant)")
     return s1, s2
@@ -297,7 +314,7 @@ def _decoupled_step(rhs_of, statement: str) -> Step:
     xs = sp.symbols("x_x x_y x_z", real=True)
     comp = [rhs_of(xs[i], i) for i in range(3)]
     off = sum(sp.diff(comp[i], xs[j]) ** 2 for i in range(3) for j in range(3) if i != j)
-    return prove_identity(off, statement)
+    return _identity(off, statement)
 
 
 @cache
@@ -546,7 +563,7 @@ def landing_claim() -> Claim:
 @cache
 def landing_corrected_claim() -> Claim:
     # The sound bound: s2 reaches 0 by T2 and stays (V2' <= 0), then s1 follows (16).
-    s_res = prove_identity(
+    s_res = _identity(
         _surface_coords(M.closed_loop("corrected").s2dot.subs(ap, 0)).subs(S2, 0),
         "s2 = 0 is invariant: s2' = 0 on s2 = 0 (corrected law)")
     steps = [_lemma(t2_claim("corrected"), "s2 reaches 0 within (26)"), s_res,
@@ -790,12 +807,12 @@ def _neighbourhood_steps(gain1, gain2, e1_, e2_, eta, theta, name: str) -> tuple
                             f"theta > 0: on and outside the boundary the derivative of {name} "
                             "is < 0", strict=True)
     steps = (
-        prove_identity(sp.simplify(gap - x * ((1 - theta) * (gain1 * x**e1_ + gain2 * x**e2_)
+        _identity(sp.simplify(gap - x * ((1 - theta) * (gain1 * x**e1_ + gain2 * x**e2_)
                                                - eta)),
                        f"-theta(...) - [bound on V'] = |{name}| ((1-theta)(A + B) - eta), "
                        f"A = {sp.sstr(gain1)}|{name}|^{sp.sstr(e1_)}, "
                        f"B = {sp.sstr(gain2)}|{name}|^{sp.sstr(e2_)}"),
-        prove_identity(sp.simplify(gain1 * thr1**e1_ - eta / om),
+        _identity(sp.simplify(gain1 * thr1**e1_ - eta / om),
                        "at the threshold (eta/((1-theta) gain1))^(1/e1), A = eta/(1-theta) "
                        "(omega = 1 - theta > 0; likewise for B)"),
         SP._increasing_power(e1_, "x -> x^e is increasing for e > 0: beyond its threshold, "
@@ -842,7 +859,7 @@ def s2_neighborhood_claim(law: str = "corrected") -> Claim:
 
 
 def _practical_time_identity(gain1, gain2, e1_, e2_, theta, eq: str) -> Step:
-    return prove_identity(
+    return _identity(
         sp.simplify(SP.polyakov_expr(theta * gain1 * 2 ** ((e1_ + 1) / 2),
                                      theta * gain2 * 2 ** ((e2_ + 1) / 2),
                                      (e1_ + 1) / 2, (e2_ + 1) / 2, 1)
@@ -984,9 +1001,9 @@ def paper_numbers_claim() -> Claim:
 @cache
 def plant_claim() -> Claim:
     acc = sp.Symbol("a", real=True)
-    steps = [prove_identity(M.time_derivative(v, acc, ap) - (acc + M.grav + M.am + ap),
+    steps = [_identity(M.time_derivative(v, acc, ap) - (acc + M.grav + M.am + ap),
                             "along (10)-(11), (30): s1'' = v' = a + g + a_m + a_p, as (23), (33)"),
-             prove_identity(M.time_derivative(M.surface1(), acc) - v,
+             _identity(M.time_derivative(M.surface1(), acc) - v,
                             "s1' = r' = v (10), (15) with r_d = 0")]
     return Claim("plant", "(10)-(11), (23), (30), (33)", "The lander model as the laws use it",
                  "r' = v, v' = a + g + a_m (+ a_p); s1'' = v' = a + g + a_m (+ a_p)",
@@ -1022,7 +1039,7 @@ def mass_claim() -> Claim:
     norm = sp.sqrt(Fx**2 + Fy**2 + Fz**2)
     steps = [prove_nonneg(norm / c, "(13): m' = -|F|/c <= 0 (the mass never grows), c = Isp g_e "
                           "> 0"),
-             prove_identity((sp.Matrix([Fx, Fy, Fz]) / m - sp.Matrix([Fx / m, Fy / m, Fz / m]))
+             _identity((sp.Matrix([Fx, Fy, Fz]) / m - sp.Matrix([Fx / m, Fy / m, Fz / m]))
                             .norm(), "(14): a = F/m per axis, so F_i = m a_i: the per-axis "
                             "thrust limit is |a_i| <= F_max/m")]
     return Claim("mass-13-14", "(13)-(14)", "Mass flow and thrust",
@@ -1052,7 +1069,7 @@ def hypothesis1_claim() -> Claim:
 def hypothesis1_per_axis_claim() -> Claim:
     t_ = sp.Symbol("t", real=True)
     amp = sp.Integer(20)
-    steps = [prove_identity(amp**2 - (amp * sp.sin(t_)) ** 2 - amp**2 * sp.cos(t_) ** 2,
+    steps = [_identity(amp**2 - (amp * sp.sin(t_)) ** 2 - amp**2 * sp.cos(t_) ** 2,
                             "20^2 - (20 sin t)^2 = 20^2 cos^2 t"),
              prove_nonneg(amp**2 * sp.cos(t_) ** 2, "20^2 cos^2 t >= 0, so (47) a_p,i = 20 sin t "
                           "satisfies the per-axis bound |a_p,i| <= 20")]
@@ -1070,7 +1087,7 @@ def remark2_claim() -> Claim:
     ww = sp.Symbol("w", positive=True)  # q2 - 1 (or g2 - 1)
     f1 = 1 / (uu * 2 ** (-uu / 2))  # (18)'s first term times beta1: 1/((1-q1) 2^((q1-1)/2))
     f2 = 1 / (ww * 2 ** (ww / 2))
-    steps = [prove_identity(sp.diff(f1, uu) + 2 ** (uu / 2) * (1 - uu * sp.log(2) / 2) / uu**2,
+    steps = [_identity(sp.diff(f1, uu) + 2 ** (uu / 2) * (1 - uu * sp.log(2) / 2) / uu**2,
                             "d/du [2^(u/2)/u] = -2^(u/2)(1 - u ln2/2)/u^2, u = 1 - q1"),
              prove_arb(1 - uu * sp.log(2) / 2, {uu: (0.0, 1.0)},
                        "1 - u ln2/2 > 0 on u in [0, 1]: the q1 term of (18) falls as 1 - q1 "
