@@ -1246,8 +1246,9 @@ def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
     law, so r, v do not depend on them nor on the mass); the command a_i = law(r, v, g_i,
     a_m = 0) and |F_i| = m |a_i|.  Margin: F_max - m0 |a_i| (m <= m0, so a nonnegative
     margin is sound).  Re-check of a violation: the surface-coordinate integration and the
-    SymPy law at 30 digits with the lightest mass m_dry (m >= m_dry, so a negative re-checked
-    margin is a sound violation)."""
+    SymPy law at 30 digits with the least mass the lander can have then: m0 at t = 0 (the
+    mass is Table I's there), the dry mass m_dry later (m >= m_dry), so a negative re-checked
+    margin is a sound violation."""
     from lgw.theory.mars.parameters import M_DRY
 
     f = M.law_numeric(law)
@@ -1287,7 +1288,7 @@ def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
         subs = {M.r: sp.Float(rr, 30), M.v: sp.Float(vv, 30), M.grav: sp.Float(G_MARS[i], 30),
                 M.am: 0, **{getattr(M, k): sp.Float(val, 30) for k, val in ax.items()}}
         a_re = float(sp.N(M.law(law).subs(subs), 30))
-        return THRUST_MAX_AXIS - M_DRY * abs(a_re)
+        return THRUST_MAX_AXIS - (M0 if pt["t"] == 0.0 else M_DRY) * abs(a_re)
 
     return search_step(
         f"|F_i(t)| <= {THRUST_MAX_AXIS:.0f} N on every axis along the Table I flight, {law} law",
@@ -1302,7 +1303,8 @@ def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
         method="reduced per-axis closed loop (LSODA 1e-10, lgw.theory.mars.reduced), margin "
                "F_max - m0 |a_i(t)| over the time grid",
         recheck=recheck, recheck_method="surface-coordinate integration and the SymPy law at "
-        "30 digits, with the dry mass 1505 kg (margin F_max - m_dry |a_i|)")
+        "30 digits, with the least possible mass (m0 at t = 0, else the dry mass 1505 kg; "
+        "margin F_max - m |a_i|)")
 
 
 def _thrust_numbers(step: Step) -> dict:
