@@ -179,6 +179,16 @@ def claim_invariants(g=None) -> Claim:
                             tuple(steps[-2:]))))
     steps.append(Step("[claim bounded-psi-monotone] the cell bounds of sup psi' min(...)",
                       FromClaim(claim_psi_monotone())))
+    hyps = _exponent_steps(bg)
+    deriv = Step("[claim bounded-derivative] s' = -k1 sig(s,e1) - k2 sig(s,e2)",
+                 FromClaim(claim_derivative()))
+    steps += [*hyps,
+              Step("s reaches 0 within the exact T_s(S) from |s| <= S",
+                   Cited(FIXED_TIME_REF, "fixed-time settling of the reaching law",
+                         (deriv, hyps[0]))),
+              Step("[claim bounded-slide-time] then |r| reaches rho within T_r",
+                   FromClaim(claim_slide_time())),
+              _two_phase_step()]
     return Claim("bounded-invariants", "issue 17", "State, command and time bounds over a box",
                  "(not in seed 000)", "|r| <= R_b, |v| <= V_b, |a+g+a_m| <= u_b, landing by "
                  "T_s + T_r (lgw.theory.mars.bounded.axis_box_bounds, evaluated in double "
@@ -518,21 +528,37 @@ def _sat_ivp_search(sg, n: int = 4, seed: int = 2) -> Step:
                        relative=True, budget=f"6 corner states + {n} random states per axis"))
 
 
+def _exponent_steps(bg) -> list[Step]:
+    """The settling lemma's 0 < e1 < 1 < e2 and the sliding phase's p2 > 1, checked on the
+    gain set by Arb (a point box each)."""
+    e1_, e2_, p2_ = sp.symbols("e1 e2 p2", positive=True)
+    return [prove_arb(sp.Min(e1_, 1 - e1_, e2_ - 1), {e1_: (bg.e1, bg.e1), e2_: (bg.e2, bg.e2)},
+                      f"0 < e1 = {bg.e1:g} < 1 < e2 = {bg.e2:g} (the settling lemma's "
+                      "exponents)", strict=True,
+                      recheck=lambda p: min(p["e1"], 1 - p["e1"], p["e2"] - 1)),
+            prove_arb(p2_ - 1, {p2_: (bg.p2, bg.p2)}, f"p2 = {bg.p2:g} > 1 (the sliding "
+                      "phase's fixed-time tail)", strict=True, recheck=lambda p: p["p2"] - 1)]
+
+
+def _two_phase_step() -> Step:
+    """T_land = T_s + T_r is a bound when each phase is (|s| stays 0 once it is 0)."""
+    t_land, t_s, t_r, Ts, Tr = sp.symbols("t_land t_s t_r T_s T_r", real=True)
+    return prove_z3(sp.Le(t_land, Ts + Tr),
+                    [sp.Le(t_land, t_s + t_r), sp.Le(t_s, Ts), sp.Le(t_r, Tr), sp.Ge(t_s, 0),
+                     sp.Ge(t_r, 0)],
+                    "T_land <= T_s + T_r: s reaches 0 by T_s and stays (V' <= 0), then the "
+                    "sliding phase takes at most T_r")
+
+
 def _sat_hypothesis_steps(sg) -> list[Step]:
     """The hypotheses the composition's lemmas need, checked on the gain set by Arb: the
     settling lemma's 0 < e1 < 1 < e2, the sliding phase's p2 > 1, and k(w0) > a_max (= 0
     here) for the invariance of Omega and a positive outside deceleration D."""
     k1_, k2_, w0_, e1_, e2_ = sp.symbols("k1 k2 w0 e1 e2", positive=True)
-    p2_ = sp.Symbol("p2", positive=True)
-    pt = {e1_: (sg.e1, sg.e1), e2_: (sg.e2, sg.e2)}
-    out = [prove_arb(sp.Min(e1_, 1 - e1_, e2_ - 1), pt, f"0 < e1 = {sg.e1:g} < 1 < e2 = "
-                     f"{sg.e2:g} (the settling lemma's exponents)", strict=True,
-                     recheck=lambda p: min(p["e1"], 1 - p["e1"], p["e2"] - 1)),
-           prove_arb(p2_ - 1, {p2_: (sg.p2, sg.p2)}, f"p2 = {sg.p2:g} > 1 (the sliding "
-                     "phase's fixed-time tail)", strict=True, recheck=lambda p: p["p2"] - 1)]
+    out = _exponent_steps(sg)
     for i in range(3):
         box = {k1_: (float(sg.k1[i]),) * 2, k2_: (float(sg.k2[i]),) * 2,
-               w0_: (float(sg.w0[i]),) * 2, **pt}
+               w0_: (float(sg.w0[i]),) * 2, e1_: (sg.e1, sg.e1), e2_: (sg.e2, sg.e2)}
         out.append(prove_arb(k1_ * w0_**e1_ + k2_ * w0_**e2_, box,
                              f"k(w0) = k1 w0^e1 + k2 w0^e2 > a_max = 0 on axis {'xyz'[i]}: "
                              "Omega is invariant and D >= k(w0) > 0", strict=True,
