@@ -1338,7 +1338,8 @@ def bounded_command_gain_claim(g) -> Claim:
     (read from the law) at the gain set's exponents, by Arb; a negative one is a witness."""
     exps = command_exponents(M.law("printed"))
     point = {s_: sp.nsimplify(getattr(g, s_.name))
-             for s_ in set().union(*(e.free_symbols for e in exps))}
+             for s_ in sorted(set().union(*(e.free_symbols for e in exps)),
+                              key=lambda x: x.name)}
     st = _bounded_step("printed", exps, point, "every exponent of a power in the printed law's "
                        f"command is >= 0 at this gain set ({', '.join(sp.sstr(e) for e in exps)})"
                        ": the command is bounded near s1 = 0")
