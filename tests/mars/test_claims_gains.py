@@ -97,7 +97,27 @@ def test_report_json_and_claims_json(tmp_path):
     res2 = runner.invoke(cli, ["report", "mars", "--gains", str(gfile), "--no-sim",
                                "--out", str(tmp_path / "out")], catch_exceptions=False)
     assert res2.exit_code == 0
-    assert (tmp_path / "out" / "claims.json").read_text() == res.output
+    # claims.json is the --json document without the provenance head (lgw_version, command,
+    # gains, disturbance) every --json document starts with
+    file_doc = json.loads((tmp_path / "out" / "claims.json").read_text())
+    assert {k: out[k] for k in file_doc} == file_doc
+    assert set(out) - set(file_doc) <= {"lgw_version", "command", "gains", "disturbance",
+                                        "library_warnings"}
+    # the findings give the command that reproduces one claim: --claim reports it alone
+    cmd = {f["id"]: f["command"] for f in out["findings"]}["paper-numbers-part1@gains"] \
+        if any(f["id"] == "paper-numbers-part1@gains" for f in out["findings"]) else None
+    assert cmd is None  # these gains reproduce Part 1: not a finding
+    one = runner.invoke(cli, ["report", "mars", "--gains", str(gfile), "--no-sim", "--claim",
+                              "T2-printed", "--json"], catch_exceptions=False)
+    doc = json.loads(one.output)
+    assert [c["id"] for c in doc["claims"]] == ["T2-printed"]
+    assert doc["findings"][0]["command"] == (f"lgw report mars --gains {gfile} --no-sim "
+                                             "--claim T2-printed --json")
+    assert doc["findings"][0]["witness"] and doc["claims"][0]["witness"]["rechecked_margin"] < 0
+    bad = runner.invoke(cli, ["report", "mars", "--no-sim", "--claim", "no-such", "--json"])
+    from lgw.theory.errors import ParameterError
+    assert isinstance(bad.exception, ParameterError) and "--claim" in str(bad.exception)
+    assert "T2-printed" in str(bad.exception)  # the valid ids are named
 
 
 def test_report_needs_out_or_json():

@@ -225,13 +225,17 @@ def part1_faster_claim(record: Mapping[str, Any] | None) -> Claim:
 
 def part2_touchdown_claim(record: Mapping[str, Any] | None) -> Claim:
     statement = ("every Table II case under a_p,i = 20 sin t (47) reaches the ground or lands "
-                 f"at no more than {PAPER_PART2_TOUCHDOWN} m/s")
+                 f"at no more than {PAPER_PART2_TOUCHDOWN} m/s (-1 if a case does neither by the "
+                 "horizon)")
 
     def m(tr: Mapping[str, Any]) -> float:
         p = tr.get("part2")
         if not p:
             return -math.inf
-        return (PAPER_PART2_TOUCHDOWN - _finite(p["max_touchdown_speed"])) / PAPER_PART2_TOUCHDOWN
+        v = _finite(p["max_touchdown_speed"])
+        if not math.isfinite(v):  # a case neither landed nor reached the ground by the horizon
+            return -1.0
+        return (PAPER_PART2_TOUCHDOWN - v) / PAPER_PART2_TOUCHDOWN
     search = record and record.get("search")
     ok = bool(search) and any(tr.get("part2") for tr in search["trials"])
     steps = ([_search_step(statement, search, m, "(1.5 - max touchdown speed)/1.5 over the "

@@ -30,7 +30,7 @@ BOX: dict[str, tuple[float, float, str]] = {
     "alpha1": (1e-2, 1e1, "log"), "alpha2": (1e-5, 1e-1, "log"),
     "q1": (0.5, 0.95, "linear"), "q2": (1.05, 2.0, "linear"),
     "g1": (0.5, 0.95, "linear"), "g2": (1.05, 2.0, "linear")}
-RANDOM_TRIALS = 6
+RANDOM_TRIALS = 16
 PART2_CASES = 100
 PART3_CASES = 50
 SEED = 0
