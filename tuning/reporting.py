@@ -61,6 +61,10 @@ class ReportJob(Job):
     render_documents: bool = True
     gains: Any = field(default=None, metadata={"fingerprint": False})
     only: tuple[str, ...] = ()
+    # where a claim's reproduction command points (a system whose report takes --claim):
+    # the gains file and whether the report flies its scenarios (--sim)
+    gains_path: str = ""
+    claim_option: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "gains", getattr(self.inputs, "gains", None))
@@ -79,9 +83,10 @@ class ReportJob(Job):
             claims = [c for c in claims if c.id in self.only]
         system = self.builder.split(".")[2] if self.builder.count(".") >= 3 else ""
         reproduce = dict(parts.reproduce or {})
-        for c in claims:  # a system without --claim: the whole report's JSON has the witness
-            reproduce.setdefault(c.id, f"lgw report {system} --json  (claim {c.id}: its "
-                                       "witness)")
+        for c in claims:
+            reproduce.setdefault(c.id, one_claim_command(system, c, self.gains_path)
+                                 if self.claim_option else
+                                 f"lgw report {system} --json  (claim {c.id}: its witness)")
         spec = parts.spec
         if not getattr(spec, "paper_title", "") and system:
             from lgw.tuning.system import get_system
@@ -102,6 +107,23 @@ class ReportJob(Job):
         counts = statement_counts(claims)
         return Outcome(json.loads(text), render=lambda con: _render(con, counts),
                        files=files)
+
+
+def one_claim_command(system: str, claim: Any, gains_path: str = "") -> str:
+    """The command that recomputes one claim alone and prints it (its witness) as JSON: the
+    claims on the paper's simulations need the scenarios flown (--sim), the others not."""
+    gains = f" --gains {gains_path}" if gains_path else ""
+    sim = "" if getattr(claim, "scope", "") == "scenario" else " --no-sim"
+    return f"lgw report {system}{gains}{sim} --claim {claim.id} --json"
+
+
+def claim_option(probe: str) -> Any:
+    """The --claim option of ``lgw report SYSTEM`` (``probe``: a claim id of the system)."""
+    from lgw.tuning.spec import option
+
+    return option("--claim", None, (), "report only this claim (its id; the findings give the "
+                  "command that reproduces each refuted claim's witness); repeatable",
+                  multiple=True, metavar="ID", probe=(probe,))
 
 
 def statement_counts(claims: Sequence[Any]) -> dict[str, dict[str, int]]:
