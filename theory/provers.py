@@ -378,9 +378,13 @@ def search_step(statement: str, margin: Callable[[Mapping[str, Any]], float],
     res = run_search(margin, points)
     counter = None
     if res.best_margin < 0:
-        counter = Witness(res.best_point, res.best_margin, method,
-                          float(recheck(res.best_point)) if recheck else None, recheck_method,
-                          seed)
+        rechecked, how = None, recheck_method
+        if recheck is not None:
+            try:
+                rechecked = float(recheck(res.best_point))
+            except (ArithmeticError, ValueError) as e:  # not evaluable in double precision
+                how = f"{recheck_method} (could not be evaluated: {type(e).__name__}: {e})"
+        counter = Witness(res.best_point, res.best_margin, method, rechecked, how, seed)
     return Step(statement, Search(dict(domain), method, res.evaluations, res.best_margin,
                                   res.best_point, seed, counter, relative, tolerance,
                                   budget or f"{res.evaluations} points, each evaluated once"))

@@ -1258,8 +1258,8 @@ def _thrust_step(g, law: str, t_end: float, n_out: int) -> Step:
         args = [ax[k] for k in ("beta1", "beta2", "alpha1", "alpha2", "q1", "q2", "g1", "g2")]
         try:
             tr = trajectory(law, ax, float(R0[i]), float(V0[i]), t_end, n_out=n_out)
-        except RuntimeError as e:  # stated in the domain: that axis is not searched
-            failed["xyz"[i]] = str(e)
+        except (RuntimeError, ArithmeticError) as e:  # stated in the domain: not searched
+            failed["xyz"[i]] = f"{type(e).__name__}: {e}"
             continue
         with np.errstate(all="ignore"):
             acc = f(tr["r"], tr["v"], float(G_MARS[i]), 0.0, *args)
