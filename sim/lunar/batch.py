@@ -149,10 +149,9 @@ def simulate(ctx: Context, X0: np.ndarray, *, method: str = "rk4", record: bool 
     rec_y = np.full((*shape, K.NY), np.nan)
     rec_x = np.full((*shape, K.NX), np.nan)
     mod = K.kernel_module()
-    fn = mod.kernel_parallel if parallel else mod.kernel_serial
-    with CompileNotice(fn, "the lunar kernel", "~1-2 min"):
-        executors.run_local(lambda sl: integrate.run_chunk(fn, sl, C, Q, R, O, G, rec_y, rec_x),
-                            n, chunk)
+    with CompileNotice(mod.kernel, "the lunar kernel", "~20-40 s"):
+        executors.run_local(lambda sl: integrate.run_chunk(mod.kernel, sl, C, Q, R, O, G, rec_y,
+                                                           rec_x, parallel), n, chunk)
     res = dict(zip(K.RESULT_FIELDS, R, strict=True))
     res.update(zip(integrate.GENERIC_FIELDS, G, strict=True))
     code = res["outcome"].copy()
@@ -226,3 +225,17 @@ def events(res: BatchResult, key: str = "orbit_saturated") -> list[list[tuple[st
             e.insert(0, ("enter", float(res.t[0])))
         ev.append(sorted(e, key=lambda x: x[1]))
     return ev
+
+
+def warmup_kernels() -> list[tuple[str, object]]:
+    """The compiled kernels of seed 001, as (name, build): the closed loop's kernel
+    (``lgw.sim.lunar.kernel``), built by flying the Section 5 case for 0.1 s through
+    ``simulate`` (the argument types of every run)."""
+    from lgw.sim.lunar.closed_loop import RunOptions
+    from lgw.sim.lunar.scenario import section5_case
+
+    def build() -> None:
+        ctx, X0 = section5_case(opts=RunOptions(t_end=0.1))
+        simulate(ctx, X0, parallel=False)
+
+    return [("lunar", build)]
