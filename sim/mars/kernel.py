@@ -1,9 +1,12 @@
 """Seed 000's client of the generic integrator (``lgw.sim.integrate``): plant, events, metrics.
 
 The hooks below are templates in the sense of ``lgw.sim.integrate``: plain Python copied into
-the generated kernel module of one law (``kernel_for``), where ``law`` is that law's generated
-code (``lgw.sim.mars.laws.law_module_source``) and the integrator's ``case`` / ``kernel`` call
-them.  What they compute is documented in ``lgw.sim.mars.batch``.
+generated modules, where ``law`` is a law's generated code (``lgw.sim.mars.laws.law_source``)
+and the integrator's ``kernel`` calls them.  Each law has a kernel module of its own (the law is
+inlined into the vector field: passed in as a function, or picked by a switch in one kernel
+for every law, it ran 25-60 % slower, docs/sim.md); the hooks that do not call the law are
+compiled once in a shared module (``hooks_module``) that every law's kernel imports.  What they
+compute is documented in ``lgw.sim.mars.batch``.
 
 State y = [r (3), v (3), m] (seed 000 (10)-(14)); auxiliary outputs X = [F (3) after the
 thrust limit, F (3) before it, s2 (3) of (21), the law's acceleration a (3), stage peaks and the
@@ -382,20 +385,25 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
 
 
 HOOKS = (sys_init, sys_rhs, _arrival, sys_start, sys_step, sys_finish)
+# the hooks that call the law (in each law's kernel module); the others do not depend on the
+# law and live in one shared module (``hooks_module``)
+LAW_HOOKS = (sys_rhs,)
 SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "ZMIN": ZMIN,
          "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND, "BLOWN": BLOWN,
          "PKS": PKS, "PKUS": PKUS, "PKA": PKA, "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN}
 
 
-def hooks_source() -> str:
-    """The hooks as written into a kernel module, with the tracker slots they use."""
+def hooks_source(hooks=HOOKS, cache: bool = False) -> str:
+    """``hooks`` as written into a generated module, with the tracker slots they use."""
+    from lgw.sim.integrate import hook_jit
     slots = "\n".join(f"{k} = {v}" for k, v in SLOTS.items())
+    opts = ", cache=True" if cache else ""
     return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
                       "from lgw.sim.mars.kernel import _drag, _drag_fac", "", slots, "",
-                      *(inspect.getsource(f) + "\n" for f in HOOKS),
-                      "_arrival_fn = numba.njit(_arrival, error_model='numpy')",
-                      *(f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', "
-                        "inline='always')" for f in HOOKS if f is not _arrival)])
+                      *(inspect.getsource(f) + "\n" for f in hooks),
+                      *([f"_arrival_fn = numba.njit(_arrival, error_model='numpy'{opts})"]
+                        if _arrival in hooks else []),
+                      *hook_jit((f.__name__ for f in hooks if f is not _arrival), cache)])
 
 
 # --- assembly -------------------------------------------------------------------------------
@@ -413,12 +421,35 @@ def _prefix(kind: str, name: str) -> str:
     return f"mars_{kind}_{slug}"
 
 
+SIZES = {"NY": NY, "NX": NX, "NS": NS}
+
+
+def hooks_text() -> str:
+    """The full text of the generated module of the hooks that do not call the law."""
+    from lgw.sim import integrate
+    shared = tuple(f for f in HOOKS if f not in LAW_HOOKS)
+    return integrate.hooks_module_source(hooks_source(shared, cache=True), SIZES)
+
+
+@functools.cache
+def hooks_module():
+    """The generated module of the law-independent hooks (compiled once, numba-cached), which
+    every law's kernel module imports."""
+    from lgw.sim import kernel_cache
+    return kernel_cache.generated_module("mars_hooks", hooks_text, _deps())
+
+
 def kernel_text(spec) -> str:
-    """The full text of the generated kernel module of law ``spec`` (what the cache keys)."""
+    """The full text of the generated kernel module of law ``spec`` (what the cache keys): the
+    law's generated code, the shared hooks imported from ``hooks_module``, the hooks that call
+    the law, and the integrator."""
     from lgw.sim import integrate
     from lgw.sim.mars.laws import law_source
-    return integrate.kernel_module_source(law_source(spec, True), hooks_source(),
-                                          {"NY": NY, "NX": NX, "NS": NS})
+    shared = [f.__name__ for f in HOOKS if f not in LAW_HOOKS]
+    shared = ["_arrival_fn" if n == "_arrival" else n for n in shared]
+    imports = f"from {hooks_module().__name__} import {', '.join(shared)}"
+    return integrate.kernel_module_source(law_source(spec, True),
+                                          imports + "\n" + hooks_source(LAW_HOOKS), SIZES)
 
 
 def law_text(spec) -> str:
@@ -431,18 +462,23 @@ def law_text(spec) -> str:
 @functools.cache
 def _kernel_module(spec):
     from lgw.sim import kernel_cache
-    return kernel_cache.module_for(_prefix("kernel", spec.name), kernel_text(spec), _deps())
+    from lgw.sim.mars.laws import law_key_parts
+    hooks_module()  # imported by the kernel module's text
+    return kernel_cache.generated_module(_prefix("kernel", spec.name), lambda: kernel_text(spec),
+                                         _deps(), law_key_parts(spec, True))
 
 
 @functools.cache
 def _law_module(spec):
     from lgw.sim import kernel_cache
-    return kernel_cache.module_for(_prefix("law", spec.name), law_text(spec), _deps())
+    from lgw.sim.mars.laws import law_key_parts
+    return kernel_cache.generated_module(_prefix("law", spec.name), lambda: law_text(spec),
+                                         _deps(), law_key_parts(spec, False))
 
 
 def kernel_module(name: str):
-    """The generated kernel module of law ``name`` (``kernel_parallel``, ``kernel_serial``,
-    ``case_fn``, ``law``), from the disk cache (written on first use)."""
+    """The generated kernel module of law ``name`` (``kernel``, ``law``), from the disk cache
+    (written on first use)."""
     from lgw.sim.mars.laws import get_law
     return _kernel_module(get_law(name))
 
