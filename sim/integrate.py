@@ -455,6 +455,16 @@ def integration_tuple(opt: IntegrationOptions, t_max: float,
             float(opt.max_step), k * ts, int(opt.max_steps), ts, int(nsub), bool(opt.record))
 
 
+def kernel_args(args: tuple) -> tuple:
+    """The kernel's input tuple (C or Q) with every array C-contiguous and writable (a copy
+    only where one is not: a read-only view such as ``np.broadcast_to`` gives).  numba types
+    read-only and non-contiguous arrays apart, and each new type is another full build of
+    the kernel (a single Section 5 case of seed 001 passed read-only gains, a campaign
+    writable ones: two builds)."""
+    return tuple(np.array(a, order="C") if isinstance(a, np.ndarray)
+                 and not (a.flags.c_contiguous and a.flags.writeable) else a for a in args)
+
+
 def generic_outputs(n: int, ny: int) -> dict[str, np.ndarray]:
     """The per-case arrays the integrator writes: nonfinite, t_end, y_end, steps, step_limit."""
     return {"nonfinite": np.zeros(n, bool), "t_end": np.empty(n), "y_end": np.empty((n, ny)),

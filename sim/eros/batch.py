@@ -358,6 +358,7 @@ def simulate_kernel(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
     gout = integrate.generic_outputs(n, KN.NY)
     G = tuple(gout[k] for k in integrate.GENERIC_FIELDS)  # noqa: N806
     C = (np.ascontiguousarray(pos0), np.ascontiguousarray(vel0), np.ascontiguousarray(cp))
+    C, Q = integrate.kernel_args(C), integrate.kernel_args(Q)  # noqa: N806
     empty = np.empty((1, 1, 1))
     executors.run_local(lambda sl: integrate.run_chunk(mod.kernel, sl, C, Q, R, O, G, empty,
                                                        empty, parallel), n, chunk)

@@ -86,6 +86,7 @@ def rk4_numpy(ctx: Context, X0: np.ndarray, record_every: int = 5) -> BatchResul
 
 def _kernel_inputs(ctx: Context, X0: np.ndarray) -> tuple[tuple, tuple]:
     """(C, Q) of the kernel (lgw.sim.lunar.kernel) for the context and initial states."""
+    from lgw.sim import integrate
     o = ctx.opts
     ref = ctx.ref
     n = X0.shape[1]
@@ -110,7 +111,7 @@ def _kernel_inputs(ctx: Context, X0: np.ndarray) -> tuple[tuple, tuple]:
          FAILURE_CODE[o.failure], float(o.Ta), float(tc), float(o.dist_amp), float(o.cmd_wn),
          POINTING_CODE[o.thrust_pointing], np.ascontiguousarray(ctx.J[:, 0], dtype=float),
          float(o.m_dry), float(P.QUAT_NORM_TOL))
-    return C, Q
+    return integrate.kernel_args(C), integrate.kernel_args(Q)
 
 
 SAT_CODE = {"commanded": 0, "nominal": 1}

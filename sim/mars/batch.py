@@ -419,6 +419,7 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
          float(stopping.m_dry),
          BLOWUP_ACCEL if stopping.blowup_accel is None else float(stopping.blowup_accel))
 
+    C, Q = integrate.kernel_args(C), integrate.kernel_args(Q)  # noqa: N806
     out = {k: np.empty((n, 3)) for k in VECTOR_FIELDS}
     out.update({k: np.empty(n) for k in ("landing_time", "fuel", "time_saturated",
                                          "min_altitude")})
