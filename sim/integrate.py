@@ -385,13 +385,13 @@ KERNEL_FOOTER = '''
 kernel = numba.njit(kernel, error_model="numpy", nogil=True, cache=True)
 '''
 
-# The hooks numba inlines into the kernel (its IR): the vector field, called at every stage
-# (as a call it costs ~25 % of the run speed of seed 000: the law's parameter-only terms are no
-# longer hoisted out of the step loop, and the call passes the tuples C and Q by value).  The
-# other hooks run once per step, sample or case and are compiled as functions of their own:
-# inlining them made numba's front end (inlining, typing, SSA, lowering of one huge function)
-# about a third of the build, for no measurable run speed.
-INLINED_HOOKS = ("sys_rhs",)
+# The hooks numba inlines into the kernel (its IR): those of every stage, step and sample.  As a
+# call, the vector field cost ~25 % of seed 000's run speed (the law's parameter-only terms are
+# no longer hoisted out of the step loop), and the step and sample hooks 7-48 % of seed 001's
+# and 002's (each call passes and unpacks the tuples C, Q, R: tens of arrays, reference counts
+# on each).  The hooks run once per case (init, start, finish) are compiled as functions of
+# their own: numba's front end is superlinear in a function's size, and they are a third of it.
+INLINED_HOOKS = ("sys_rhs", "sys_step", "sys_sample")
 
 
 def hook_jit(names: Iterable[str], cache: bool = False) -> list[str]:

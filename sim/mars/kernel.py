@@ -4,8 +4,8 @@ The hooks below are templates in the sense of ``lgw.sim.integrate``: plain Pytho
 generated modules, where ``law`` is a law's generated code (``lgw.sim.mars.laws.law_source``)
 and the integrator's ``kernel`` calls them.  Each law has a kernel module of its own (the law is
 inlined into the vector field: passed in as a function, or picked by a switch in one kernel
-for every law, it ran 25-60 % slower, docs/sim.md); the hooks that do not call the law are
-compiled once in a shared module (``hooks_module``) that every law's kernel imports.  What they
+for every law, it ran 25-60 % slower, docs/sim.md); the hooks run once per case are compiled
+once in a shared module (``hooks_module``) that every law's kernel imports.  What they
 compute is documented in ``lgw.sim.mars.batch``.
 
 State y = [r (3), v (3), m] (seed 000 (10)-(14)); auxiliary outputs X = [F (3) after the
@@ -385,9 +385,10 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
 
 
 HOOKS = (sys_init, sys_rhs, _arrival, sys_start, sys_step, sys_finish)
-# the hooks that call the law (in each law's kernel module); the others do not depend on the
-# law and live in one shared module (``hooks_module``)
-LAW_HOOKS = (sys_rhs,)
+# the hooks compiled into each law's kernel module (the inlined ones, lgw.sim.integrate
+# .INLINED_HOOKS); the others do not depend on the law and live in one shared module
+# (``hooks_module``)
+KERNEL_HOOKS = (sys_rhs, sys_step)
 SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "ZMIN": ZMIN,
          "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND, "BLOWN": BLOWN,
          "PKS": PKS, "PKUS": PKUS, "PKA": PKA, "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN}
@@ -427,7 +428,7 @@ SIZES = {"NY": NY, "NX": NX, "NS": NS}
 def hooks_text() -> str:
     """The full text of the generated module of the hooks that do not call the law."""
     from lgw.sim import integrate
-    shared = tuple(f for f in HOOKS if f not in LAW_HOOKS)
+    shared = tuple(f for f in HOOKS if f not in KERNEL_HOOKS)
     return integrate.hooks_module_source(hooks_source(shared, cache=True), SIZES)
 
 
@@ -441,15 +442,15 @@ def hooks_module():
 
 def kernel_text(spec) -> str:
     """The full text of the generated kernel module of law ``spec`` (what the cache keys): the
-    law's generated code, the shared hooks imported from ``hooks_module``, the hooks that call
-    the law, and the integrator."""
+    law's generated code, the shared hooks imported from ``hooks_module``, the inlined hooks
+    (``KERNEL_HOOKS``), and the integrator."""
     from lgw.sim import integrate
     from lgw.sim.mars.laws import law_source
-    shared = [f.__name__ for f in HOOKS if f not in LAW_HOOKS]
+    shared = [f.__name__ for f in HOOKS if f not in KERNEL_HOOKS]
     shared = ["_arrival_fn" if n == "_arrival" else n for n in shared]
     imports = f"from {hooks_module().__name__} import {', '.join(shared)}"
     return integrate.kernel_module_source(law_source(spec, True),
-                                          imports + "\n" + hooks_source(LAW_HOOKS), SIZES)
+                                          imports + "\n" + hooks_source(KERNEL_HOOKS), SIZES)
 
 
 def law_text(spec) -> str:
