@@ -28,11 +28,14 @@ reference (Table II, and Table III with the 50 kN limit), landed fraction, steps
 
 --before COMMIT: the simulators of that commit (its theory/, sim/ and tuning/ from git, run in a
 worker process of their own with their own kernel cache) against this checkout's, on the same
-cases, one thread each, RK4 and dopri5, for each system (--systems): mars Table II
-(--n-before cases), lunar Section 5 (/ 50), eros Monte Carlo offsets (/ 10); best CPU time of
---repeat interleaved runs: cases/s of both, the ratio now/before, and whether the per-case
-results are bitwise equal.  --now COMMIT takes "now" from a commit too (a run that stays valid
-while the checkout is edited).
+cases, one thread each, RK4 and dopri5, for each workload (--systems): mars Table II
+(--n-before cases), lunar Section 5 (/ 50), a lunar Monte Carlo campaign (lunar-campaign, / 50;
+RK4 at the converged step, and at 4x it in the dopri5 row: the campaign flies RK4 only), eros
+Monte Carlo offsets (/ 10) and the whole eros descent's last 20 s on the shape model
+(eros-descent, / 200, Monte Carlo dispersions); best CPU time of --repeat interleaved runs:
+cases/s of both, the ratio now/before, and whether the per-case results are bitwise equal.
+--now COMMIT takes "now" from a commit too (a run that stays valid while the checkout is
+edited).
 
 --dt-sweep: for each dt, (c)'s accuracy against (a) and against the tight LSODA reference
 (Table II, and Table III with the 50 kN limit), the fraction of Table II cases that meet the
@@ -274,6 +277,9 @@ def _digest(obj) -> str:
     return h.hexdigest()[:16]
 
 
+SYSTEMS = ("mars", "lunar", "lunar-campaign", "eros", "eros-descent")
+
+
 def workload(system: str, method: str, n: int):
     """A function running ``n`` cases of ``system`` with ``method`` on one thread, through
     the public batch entry points every version of the simulators has."""
@@ -287,6 +293,37 @@ def workload(system: str, method: str, n: int):
 
         ctx, X0 = section5_case(n=n)
         return lambda: simulate(ctx, X0, method=method, record=False, parallel=False).cases
+    if system == "lunar-campaign":
+        # a Monte Carlo campaign (failure time and level, initial state drawn), RK4 at the
+        # run options' converged step; dopri5 through the same kernel as "lunar" above
+        from dataclasses import replace
+
+        from lgw.sim.lunar import campaign as LC
+        from lgw.sim.lunar.closed_loop import RunOptions
+        from lgw.theory.lunar.gains import paper_gains
+
+        opts = RunOptions()
+        if method != "rk4":  # the campaign flies RK4 only: a coarser step as a second load
+            opts = replace(opts, dt=4 * opts.dt)
+        return lambda: LC.run(paper_gains(), opts, n, seed=0, check_cases=0)
+    if system == "eros-descent":
+        # the whole descent (shape model's gravity, probe, navigation error) from the
+        # profile's last 20 s, Monte Carlo dispersions
+        from dataclasses import replace
+
+        from lgw.sim.eros.descent import (
+            DescentOptions,
+            descent_gains,
+            dispersions,
+            simulate_descent,
+        )
+
+        d = dispersions(n, seed=0, pos=1.0, vel=0.01)
+        base = DescentOptions(method=method, stride=5)
+        opts = replace(base, t0=float(base.profile().t_touchdown - 20.0))
+        return lambda: simulate_descent(d["e0"], d["ed0"], descent_gains(), opts,
+                                        srp=d["srp"], case_phase=d["case_phase"],
+                                        nav_ids=d["nav_ids"], parallel=False)
     from lgw.sim.eros.batch import SimOptions, simulate_kernel
     from lgw.sim.eros.campaign import offsets
     from lgw.theory.eros.gains import default_gains as eros_gains
@@ -334,7 +371,8 @@ def before_after(commit: str, systems: list[str], n: int, repeat: int,
         trees["now"] = before_tree(now)
     procs = {}
     for label in ("before", "now"):
-        env = dict(os.environ)
+        # one thread everywhere (the campaigns run their chunks in the kernels' threads)
+        env = dict(os.environ, NUMBA_NUM_THREADS="1")
         if label in trees:
             env.update(PYTHONPATH=str(trees[label] / "pkg"),
                        LGW_CACHE_DIR=str(trees[label] / "cache"))
@@ -344,7 +382,8 @@ def before_after(commit: str, systems: list[str], n: int, repeat: int,
                                         stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                         text=True)
         print(f"{label}: lgw from {json.loads(procs[label].stdout.readline())['lgw']}")
-    sizes = {"mars": n, "lunar": max(1, n // 50), "eros": max(1, n // 10)}
+    sizes = {"mars": n, "lunar": max(1, n // 50), "lunar-campaign": max(1, n // 50),
+             "eros": max(1, n // 10), "eros-descent": max(1, n // 200)}
     print(f"{'system':6} {'method':7} {'cases':>6} {'before /s':>10} {'now /s':>10} "
           f"{'now/before':>10}  bitwise equal")
     try:
@@ -378,10 +417,11 @@ def main() -> None:
                     "equality, in one run)")
     ap.add_argument("--now", metavar="COMMIT", default=None,
                     help="with --before: the simulators at COMMIT instead of this checkout")
-    ap.add_argument("--systems", nargs="+", choices=("mars", "lunar", "eros"),
-                    default=["mars", "lunar", "eros"], help="systems for --before")
+    ap.add_argument("--systems", nargs="+", choices=SYSTEMS, default=list(SYSTEMS),
+                    help="workloads for --before")
     ap.add_argument("--n-before", type=int, default=2000,
-                    help="mars cases for --before (lunar / 50, eros / 10)")
+                    help="mars cases for --before (lunar and lunar-campaign / 50, eros / 10, "
+                         "eros-descent / 200)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--n-ivp", type=int, default=8)

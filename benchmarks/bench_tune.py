@@ -18,6 +18,11 @@
                                                in the output), then fresh Table III (500) and
                                                Table II (1000) campaigns of the tuned gains
                                                with the post-arrival peaks from trajectories
+  python benchmarks/bench_tune.py gp          the geometric programs of one tuning run's outer
+                                               loop: built once as a DPP family and re-solved
+                                               (today) against rebuilt per exponent set (the
+                                               design.py of --baseline-rev, loaded from git), same
+                                               run: seconds, ratio, largest optimum difference
   python benchmarks/bench_tune.py all
 
 Every number printed comes from ``lgw.tuning.mars.design`` and
@@ -315,10 +320,55 @@ def bench_bounded_sat(tf: float = 60.0, thrust: float = 50_000.0,
     return out
 
 
+def bench_gp(envelope: str, baseline_rev: str, n: int) -> dict:
+    """GP solve time of the outer loop's coarse grid, DPP family vs rebuild, one run."""
+    import importlib.util
+    import itertools
+    import subprocess
+    import sys
+
+    from lgw.tuning.mars import design as new
+
+    src = subprocess.run(["git", "show", f"{baseline_rev}:tuning/mars/design.py"],
+                         capture_output=True, text=True, check=True).stdout
+    spec = importlib.util.spec_from_loader("design_baseline", loader=None)
+    old = importlib.util.module_from_spec(spec)
+    sys.modules["design_baseline"] = old
+    exec(compile(src, f"{baseline_rev}:tuning/mars/design.py", "exec"), old.__dict__)
+    env = new.envelope_from_name(envelope)
+    grid = list(itertools.product(*new.COARSE_GRID.values()))[:n]
+    out = {}
+    for label, req in (("no disturbance, exact, axis", new.Request(tf=90.0, thrust_max=5e4)),
+                       ("a_max 0.5, neighbourhood 20 m (4 branches)",
+                        new.Request(tf=200.0, thrust_max=5e4, a_max=0.5, neighborhood=20.0)),
+                       ("polyakov, norm", new.Request(tf=90.0, thrust_max=5e4,
+                                                      bound="polyakov", limit="norm"))):
+        t = time.perf_counter()
+        ro = [old.solve_gp(old.Exponents(*e), req, env) for e in grid]
+        t_old = time.perf_counter() - t
+        t = time.perf_counter()
+        rn = [new.solve_gp(new.Exponents(*e), req, env) for e in grid]
+        t_new = time.perf_counter() - t
+        both = [(a.value, b.value) for a, b in zip(ro, rn, strict=True)
+                if np.isfinite(a.value) and np.isfinite(b.value)]
+        diff = max((abs(a - b) / abs(a) for a, b in both), default=float("nan"))
+        feas = sum((a.gains is None) != (b.gains is None) for a, b in zip(ro, rn, strict=True))
+        out[label] = {"gps": len(grid), "rebuild_s": t_old, "family_s": t_new,
+                      "ratio": t_old / t_new, "max_rel_optimum_diff": diff,
+                      "feasibility_differences": feas}
+        print(f"{label}: {len(grid)} GPs, rebuilt {t_old:.2f} s, family {t_new:.2f} s, "
+              f"ratio {t_old / t_new:.1f}; largest relative difference of the optimum "
+              f"{diff:.1e}; feasibility differences {feas}", flush=True)
+    return out
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("what", choices=("time", "compare", "check", "bounded", "bounded-sat",
-                                     "all"))
+                                     "gp", "all"))
+    ap.add_argument("--baseline-rev", default="e448ec4",
+                    help="gp: the git revision whose design.py rebuilds every GP")
+    ap.add_argument("--gps", type=int, default=27, help="gp: exponent sets per request")
     ap.add_argument("--no-baseline", action="store_true", help="bounded: skip the corrected tuner")
     ap.add_argument("--envelope", default=None)
     ap.add_argument("--tf", type=float, nargs="*", default=None)
@@ -330,6 +380,8 @@ def main() -> None:
                     help="bounded-sat: Table III and Table II campaign sizes (0 skips)")
     args = ap.parse_args()
     np.set_printoptions(precision=4)
+    if args.what in ("gp", "all"):
+        bench_gp(args.envelope or "table3+table2", args.baseline_rev, args.gps)
     if args.what in ("time", "all"):
         bench_time(args.envelope or "table3+table2")
     if args.what in ("compare", "all"):

@@ -163,6 +163,59 @@ def _herm_first_below(p0: float, d0: float, p1: float, d1: float, h: float,
     return b
 
 
+@numba.njit(error_model="numpy", cache=True)
+def _herm_first_under(p0: float, d0: float, p1: float, d1: float, h: float, level: float,
+                      a: float, b: float) -> float:
+    """The first th in [a, b] (within [0, 1]) where the cubic Hermite interpolant (``_herm``)
+    is strictly below ``level``, or 2.0 if there is none: the first crossing of a surface by a
+    component that need not be monotone over the step (a dip below the ground and back that
+    lies between the nodes).  The interval is cut at the roots of the cubic's derivative into
+    monotone pieces, the first piece that ends below the level is bisected (BISECT_ITERS);
+    the result is the bisection's upper end, a point where the interpolant is below the level.
+    """
+    if b < a:
+        return 2.0
+    if _herm(p0, d0, p1, d1, h, a) < level:
+        return a
+    # derivative: qa th^2 + qb th + qc (as _herm_min)
+    qa = 6.0 * p0 + 3.0 * h * d0 - 6.0 * p1 + 3.0 * h * d1
+    qb = -6.0 * p0 - 4.0 * h * d0 + 6.0 * p1 - 2.0 * h * d1
+    qc = h * d0
+    c1 = 2.0
+    c2 = 2.0
+    if qa == 0.0:
+        if qb != 0.0:
+            c1 = -qc / qb
+    else:
+        disc = qb * qb - 4.0 * qa * qc
+        if disc >= 0.0:
+            sq = math.sqrt(disc)
+            r1 = (-qb - sq) / (2.0 * qa)
+            r2 = (-qb + sq) / (2.0 * qa)
+            c1 = min(r1, r2)
+            c2 = max(r1, r2)
+    lo = a
+    for k in range(3):
+        hi = c1 if k == 0 else (c2 if k == 1 else b)
+        if not (a < hi < b) and k < 2:
+            continue
+        if hi <= lo:
+            continue
+        if _herm(p0, d0, p1, d1, h, hi) < level:
+            # the interpolant is monotone on [lo, hi], >= level at lo, < level at hi
+            x0 = lo
+            x1 = hi
+            for _ in range(BISECT_ITERS):
+                mid = 0.5 * (x0 + x1)
+                if _herm(p0, d0, p1, d1, h, mid) < level:
+                    x1 = mid
+                else:
+                    x0 = mid
+            return x1
+        lo = hi
+    return 2.0
+
+
 # --- templates (copied into each generated kernel module) --------------------------------
 
 def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
@@ -378,7 +431,8 @@ KERNEL_IMPORTS = (
     "import numba",
     "import numpy as np",
     "from lgw.sim.integrate import (CONTINUE, DP_A, DP_B, DP_C, DP_E, PI_BETA, PI_MAXFAC,",
-    "    STOP_AT_NODE, STOP_INSIDE, _band, _herm, _herm_first_below, _herm_min)",
+    "    STOP_AT_NODE, STOP_INSIDE, _band, _herm, _herm_first_below, _herm_first_under,",
+    "    _herm_min)",
 )
 
 KERNEL_FOOTER = '''
@@ -394,13 +448,16 @@ kernel = numba.njit(kernel, error_model="numpy", nogil=True, cache=True)
 INLINED_HOOKS = ("sys_rhs", "sys_step", "sys_sample")
 
 
-def hook_jit(names: Iterable[str], cache: bool = False) -> list[str]:
-    """The lines compiling a system's hooks in its generated module (``INLINED_HOOKS``
-    inlined, the others plain functions), for every system alike.  cache=True for hooks in a
-    module of their own that several kernels share (``hooks_module_source``)."""
+def hook_jit(names: Iterable[str], cache: bool = False,
+             inline: Iterable[str] = ()) -> list[str]:
+    """The lines compiling a system's hooks in its generated module (``INLINED_HOOKS`` and
+    the system's helpers named in ``inline`` inlined, the others plain functions), for every
+    system alike.  cache=True for hooks in a module of their own that several kernels share
+    (``hooks_module_source``)."""
     opts = ", cache=True" if cache else ""
+    inl = set(INLINED_HOOKS) | set(inline)
     return [f"{n} = numba.njit({n}, error_model='numpy'{opts}"
-            + (", inline='always')" if n in INLINED_HOOKS else ")") for n in names]
+            + (", inline='always')" if n in inl else ")") for n in names]
 
 
 SAMPLE_STUB = '''

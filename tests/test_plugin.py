@@ -1,57 +1,76 @@
-"""The pytest plugin of lgw.testing, as a user would use it: a ten-line test file and a gains
-file in a temporary project, run by pytest with the installed plugin (entry point pytest11).
-It passes for valid gains and fails, with a shrunk witness and a reproduction, for a gains
-file whose certificate promises a landing-time bound shorter than a reachable landing."""
+"""The pytest plugin of lgw.testing, as a user's CI runs it: a temporary project with gains
+files and a ten-line test using the ``lgw_claim`` fixture (one test per claim).  A claim that
+holds passes, a claim whose inputs the file does not give is a skip with its reason, a violated
+bound is one clean failure: observed, bound, state, gains and the reproducing command, with no
+traceback and no object repr."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
-from lgw.theory.mars.bounds import landing_time_bound
-from lgw.theory.mars.gains import gains_from_dict, gains_to_toml
 
 pytest_plugins = ["pytester"]
-# Each run is a fresh pytest process that compiles the simulator's numba kernels (~40 s of the
-# ~60 s per test on a shared 2-core machine): long, so behind the slow marker.
-pytestmark = pytest.mark.slow
 
+TUNED = (Path(__file__).parents[1] / "tuning" / "mars" / "data" /
+         "tuned_tf90_50kN.toml").read_text()
+LUNAR = """[orbit]
+K1 = [0.1, 0.1, 0.1]
+F2 = [1.0, 1.0, 20.0]
+f3 = 0.25
+d0e0 = 0.0
+q = 0.01
+"""
 USER_TEST = '''
 import pytest
 
+FAST = dict(t_max=2.0, examples=5, min_cases=3, seed=0)
 
-@pytest.mark.lgw_gains("gains.toml", system="mars", examples=4, min_cases=2)
-def test_gains_keep_every_proven_bound(lgw_verify):
-    lgw_verify.assert_holds()
+
+@pytest.mark.lgw_gains("lunar.toml", system="lunar", **FAST)
+def test_lunar_gains(lgw_claim):
+    lgw_claim.assert_holds()
+
+
+@pytest.mark.lgw_gains("tuned.toml", system="mars", claim=("s2-39-40", "s1-31-45"))
+def test_tuned_mars_gains(lgw_claim):
+    lgw_claim.assert_holds()
+
+
+@pytest.mark.lgw_gains("lunar.toml", system="lunar", claim="(19a)", scale={"(19a)": 0.25},
+                       **FAST)
+def test_a_false_promise(lgw_claim):
+    lgw_claim.assert_holds()
 '''
 
-# A gain set whose worst landing (the search reaches it from |s2(0)| ~ 1e9) is 91.9 s, 0.80 of
-# T2* + T1* = 114.7 s.
-GAINS = {"gains": {"beta1": 0.2, "beta2": 0.01, "alpha1": 0.5, "alpha2": 0.02, "q1": 0.9,
-                   "q2": 1.5, "g1": 0.7, "g2": 1.5},
-         "disturbance": {"a_max": 20.0, "theta1": 0.2, "theta2": 0.1}}
 
-
-def _project(pytester, certificate: str = ""):
-    g = gains_from_dict(GAINS)
-    pytester.makefile(".toml", gains=gains_to_toml(g) + certificate)
+def test_pass_skip_and_one_clean_failure(pytester):
+    pytester.makefile(".toml", lunar=LUNAR, tuned=TUNED)
     pytester.makepyfile(test_user=USER_TEST)
-    return g
+    res = pytester.runpytest_inprocess("-p", "no:cacheprovider", "-rs", "-q")
+    res.assert_outcomes(passed=7, skipped=2, failed=1)
+    out = res.stdout.str()
+    assert "not applicable, because the gains file has no [disturbance] table" in out
+    fail = out[out.index("test_a_false_promise"):]
+    for part in ("(19a) (19a): observed", "observed: ||z1||^2", "bound: V2(0)/f1bar",
+                 "state: x1 = ", "gains: ", "reproduce: lgw verify lunar --gains "):
+        assert part in fail, part
+    assert "Traceback" not in out and "ClaimResult(" not in out and "def test_" not in fail
 
 
-def test_plugin_passes_valid_gains(pytester):
-    _project(pytester)
+@pytest.mark.slow
+def test_whole_file_fixture_in_a_fresh_process_keeps_the_database(pytester):
+    """``lgw_verify`` for the whole file in a fresh pytest process (entry point pytest11);
+    the example database lands in the project's pytest cache (cache it between CI runs)."""
+    pytester.makefile(".toml", lunar=LUNAR)
+    pytester.makepyfile(test_user='''
+import pytest
+
+
+@pytest.mark.lgw_gains("lunar.toml", system="lunar", t_max=2.0, examples=6, min_cases=2)
+def test_gains(lgw_verify):
+    lgw_verify.assert_holds()
+''')
     res = pytester.runpytest_subprocess("-q")
     res.assert_outcomes(passed=1)
-    # the example database is kept in the project's pytest cache (cache it between CI runs)
     assert (pytester.path / ".pytest_cache" / "d" / "lgw-examples").is_dir()
-
-
-def test_plugin_fails_with_shrunk_witness_for_a_shrunk_bound(pytester):
-    g = gains_from_dict(GAINS)
-    # promise 86 s (0.75 x T2* + T1*), shorter than the 91.9 s landing the search can reach
-    promised = 0.75 * landing_time_bound(g)
-    _project(pytester, f"\n[certificate]\nlanding_time_bound = {promised!r}\n")
-    res = pytester.runpytest_subprocess("-p", "no:cacheprovider", "-q")
-    res.assert_outcomes(failed=1)
-    out = res.stdout.str()
-    assert "landing-T2+T1" in out and "violated" in out
-    assert "shrunk witness" in out and "lgw simulate mars --gains witness_gains.toml" in out

@@ -70,6 +70,8 @@ def test_lunar_kernel_has_one_specialisation() -> None:
                      (replace(base, sat_reading="nominal", failure="none"), {})):
         ctx, X0 = section5_case(opts=opts, n=2)
         simulate(ctx, X0, **kw)
+    # a Monte Carlo campaign's per-case failure levels and times (lgw.sim.lunar.campaign)
+    simulate(ctx, X0, record=False, failures=(np.array([0.5, 0.7]), np.array([0.2, 0.4])))
     _one_specialisation(K.kernel_module().kernel)
 
 
@@ -85,4 +87,22 @@ def test_eros_kernel_has_one_specialisation() -> None:
                             gravity="none"),
                  SimOptions(t_final=0.1, law="pdsmc", disturbance="unknown", n_sub=3)):
         simulate_kernel(e0, ed0, default_gains(), opts, ph, parallel=opts.law != "pdsmc")
+    _one_specialisation(K.kernel_module().kernel)
+
+
+def test_eros_descent_kernel_has_one_specialisation() -> None:
+    from dataclasses import replace
+
+    from lgw.sim.eros import descent_kernel as K
+    from lgw.sim.eros.descent import DescentOptions, Navigation, descent_gains, simulate_descent
+
+    base = DescentOptions(t0=0.0, t_max=2.0)
+    e0 = np.array([[1.0, -2.0, 0.5], [0.0, 0.0, 0.0]])
+    for opts, kw in ((base, {}), (replace(base, method="dopri5", gravity="two-point"), {}),
+                     (replace(base, law="pdsmc", switch="tanh", gravity="polyhedron-exact",
+                              controller_gravity="none", nav=Navigation.typical(3), stride=0),
+                      {"parallel": False, "srp": [0.0, 1e-6]}),
+                     (replace(base, gravity="none", controller_gravity="polyhedron"),
+                      {"case_phase": 0.3, "nav_ids": [5, 9]})):
+        simulate_descent(e0, np.zeros((2, 3)), descent_gains(), opts, **kw)
     _one_specialisation(K.kernel_module().kernel)

@@ -26,7 +26,7 @@ from typing import Any
 import click
 from lgw.theory.errors import NotApplicableError, ParameterError
 from lgw.tuning.spec import click_params, option_fields
-from lgw.tuning.system import VERBS, Legacy, NotApplicable, Outcome, System, get_system
+from lgw.tuning.system import VERBS, NotApplicable, Outcome, System, get_system
 
 DOCUMENT = object()  # in Outcome.files: "the command's JSON document goes here"
 
@@ -47,8 +47,6 @@ def make_command(system: System, verb: str) -> click.Command:
         return click.Command(system.name, callback=refuse,
                              help=f"Not applicable to {system.name}: {reason}",
                              short_help=f"not applicable: {reason}")
-    if isinstance(v, Legacy):
-        return v.load().command
     mod = v.load()
     params = click_params(mod.Options)
 
@@ -153,6 +151,8 @@ def run(system: System, verb: str, mod: Any, opts: Any) -> int:
     gains = getattr(job, "gains", None)
     if gains is not None:
         head.update(system.gains_module().document(gains))
+    else:  # every document carries gains: a job that flies none (optimal) says null, a
+        head["gains"] = None  # tuner puts the gains it designed in its document
     doc = {**head, **outcome.document}
     if notes:
         doc["library_warnings"] = notes
@@ -279,7 +279,7 @@ def first_line(text: str | None) -> str:
     return _first_line(text)
 
 
-def all_commands(include_legacy: bool = True) -> list[tuple[str, str, click.Command]]:
+def all_commands() -> list[tuple[str, str, click.Command]]:
     """(verb, system, command) of every applicable verb of every system."""
     from lgw.tuning.system import all_systems
 
@@ -288,8 +288,6 @@ def all_commands(include_legacy: bool = True) -> list[tuple[str, str, click.Comm
         for verb in VERBS:
             v = s.verbs.get(verb)
             if v is None or isinstance(v, NotApplicable):
-                continue
-            if isinstance(v, Legacy) and not include_legacy:
                 continue
             out.append((verb, s.name, make_command(s, verb)))
     return out

@@ -97,18 +97,6 @@ class Verb:
 
 
 @dataclass(frozen=True)
-class Legacy:
-    """A verb still written as its own click command (``module.command``), during the move of
-    every verb onto the shared commands."""
-
-    module: str
-    help: str
-
-    def load(self) -> Any:
-        return importlib.import_module(self.module)
-
-
-@dataclass(frozen=True)
 class NotApplicable:
     """A verb that does not apply to a system, and why (shown in --help, exit 2)."""
 
@@ -128,7 +116,7 @@ class System:
     title: str
     summary: str
     gains: str
-    verbs: Mapping[str, Verb | Legacy | NotApplicable]
+    verbs: Mapping[str, Verb | NotApplicable]
     claims: str = ""
     interop: str = ""
     kernels: str = ""
@@ -179,9 +167,6 @@ def check_consistent(systems: Iterable[System] | None = None) -> list[str]:
             v = s.verbs.get(verb)
             if v is None:
                 problems.append(f"{s.name}: verb {verb} neither implemented nor not-applicable")
-            elif isinstance(v, Legacy):
-                if not hasattr(v.load(), "command"):
-                    problems.append(f"{s.name} {verb}: {v.module} has no command")
             elif isinstance(v, Verb):
                 m = v.load()
                 for attr in ("Options", "plan"):

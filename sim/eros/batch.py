@@ -30,10 +30,11 @@ final state.
 Outcomes (``OUTCOMES``): every case ends in exactly one, with its time (``Result.outcome``,
 ``Result.t_outcome``), the first thing that happened:
 
-  "surface_contact"  the sampled position is inside the shape model of Eros (the polyhedron of
+  "crashed"          the sampled position is inside the shape model of Eros (the polyhedron of
                      lgw.theory.eros.polyhedron; checked at every sample t_k, after a bounding-box
                      screen); time: the first such sample.  The case is frozen there (a crash:
-                     the plant (4) does not model contact).  Between samples a contact is not
+                     the plant (4) does not model contact; the shared vocabulary's name,
+                     lgw.sim.results).  Between samples a contact is not
                      located (a probe faster than ~1e5 m/s could cross the body unseen).
   "nonfinite"        the control u_k or the state became NaN / inf; time: the start t_k of the
                      sample interval that blew up (u_k itself, or an RK4 stage within it).  The
@@ -55,6 +56,7 @@ from functools import cache
 import numpy as np
 from lgw.sim.eros import laws as SL
 from lgw.sim.eros import plant as PL
+from lgw.sim.results import names as _shared_names
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros import reference as REF
 from lgw.theory.eros.gains import Gains
@@ -63,7 +65,7 @@ from scipy.integrate import solve_ivp
 
 DIST_MODES = ("known", "unknown", "none")
 ENGINES = ("kernel", "numpy")
-OUTCOMES = ("surface_contact", "nonfinite", "tracked", "horizon")
+OUTCOMES = _shared_names("crashed", "nonfinite", "tracked", "horizon")  # lgw.sim.results
 
 
 @dataclass(frozen=True)
@@ -541,9 +543,11 @@ def metrics(res: Result, track_tol: float = P.TRACK_TOL) -> dict[str, np.ndarray
 
 
 def warmup_kernels() -> list[tuple[str, object]]:
-    """The compiled kernels of seed 002, as (name, build): the sampled-data loop's kernel
-    with all six variants (``lgw.sim.eros.kernel``), built by flying the paper's scenario for
-    two samples through ``simulate_kernel`` (the argument types of every run)."""
+    """The compiled kernels of seed 002, as (name, build): the sampled-data tracking loop's
+    kernel with all six variants (``lgw.sim.eros.kernel``), built by flying the paper's
+    scenario for two samples through ``simulate_kernel``, and the whole descent's kernel
+    (``lgw.sim.eros.descent_kernel``), built by flying the descent for two samples through
+    ``simulate_descent`` (the argument types of every run)."""
     from lgw.theory.eros.gains import default_gains
 
     def build() -> None:
@@ -551,4 +555,10 @@ def warmup_kernels() -> list[tuple[str, object]]:
         simulate_kernel(P.SCENARIO_OFFSET[None], P.SCENARIO_VOFFSET[None], default_gains(),
                         opts, parallel=False)
 
-    return [("eros", build)]
+    def build_descent() -> None:
+        from lgw.sim.eros.descent import DescentOptions, descent_gains, simulate_descent
+        z = np.zeros((1, 3))
+        simulate_descent(z, z, descent_gains(), DescentOptions(t_max=2 * P.DESCENT_DT),
+                         parallel=False)
+
+    return [("eros", build), ("eros/descent", build_descent)]

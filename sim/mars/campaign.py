@@ -22,8 +22,9 @@ from typing import Any
 
 import numpy as np
 from lgw.sim import executors
-from lgw.sim.mars.batch import BatchResult, simulate_batch
+from lgw.sim.mars.batch import OUTCOMES_USED, BatchResult, simulate_batch
 from lgw.sim.results import OUTCOMES, counts
+from lgw.sim.stats import finite_stats
 from lgw.theory.errors import ParameterError
 from lgw.theory.inputs import read_csv_columns
 from lgw.theory.mars.gains import Gains
@@ -71,6 +72,9 @@ def table1_state() -> States:
     return R0[None].copy(), V0[None].copy(), np.array([M0])
 
 
+M0_MAX = 1e9  # kg: m0 x 2.2e-16 x the steps of a run stays below a gram of fuel
+
+
 def read_states_csv(path: str | Path) -> States:
     """Read explicit initial states: a header with columns rx, ry, rz, vx, vy, vz, m (any order,
     extra columns ignored), one case per row; SI units (``lgw.theory.inputs.read_csv_columns``:
@@ -78,10 +82,12 @@ def read_states_csv(path: str | Path) -> States:
     name = "--initial-states"
     cols = read_csv_columns(path, name, CSV_COLUMNS)
     data = np.column_stack([cols[c] for c in CSV_COLUMNS])
-    bad = np.flatnonzero(data[:, 6] <= 0)
+    bad = np.flatnonzero(~((data[:, 6] > 0) & (data[:, 6] <= M0_MAX)))
     if bad.size:
-        raise ParameterError(f"{name} row {bad[0] + 2} column m", data[bad[0], 6],
-                             "must be > 0 (kg)")
+        raise ParameterError(f"{name} row {bad[0] + 2} column m", float(data[bad[0], 6]),
+                             f"must be in (0, {M0_MAX:g}] kg (above, the propellant burnt "
+                             "is lost in the rounding of the mass: 1e30 kg saturated at 50 kN "
+                             "for 120 s would show 0 kg of fuel)")
     return data[:, :3], data[:, 3:6], data[:, 6]
 
 
@@ -126,21 +132,28 @@ def run_campaign(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *
 
 # --- summaries ------------------------------------------------------------------------------
 
-def _stats(x: np.ndarray) -> dict[str, float | None]:
-    x = np.asarray(x, float)
-    x = x[np.isfinite(x)]
-    if x.size == 0:
-        return {"min": None, "median": None, "max": None}
-    return {"min": float(x.min()), "median": float(np.median(x)), "max": float(x.max())}
+def _stats(x: np.ndarray, include: np.ndarray | None = None) -> dict[str, float | int | None]:
+    """min / mean / median / max over the finite values of the included cases, with how many
+    were summarised (n) and how many left out (excluded: not included, or not finite), never
+    an impossible aggregate (lgw.sim.stats.finite_stats)."""
+    return finite_stats(x, include)
 
 
 def summarize(res: BatchResult) -> dict[str, Any]:
-    """Min / median / max over landed cases, and the counts, with eps and dt."""
-    ok = res.landed & ~res.nonfinite
-    err = np.linalg.norm(res.r_land[ok], axis=1) if ok.any() else np.array([])
+    """Counts per outcome, and statistics over the cases of each quantity's outcome (landed
+    cases for the landing numbers, crashed cases for the impact), with eps and dt.  Each
+    statistic says how many cases it summarises and how many it leaves out."""
+    code, _ = res.outcomes()
+    landed = code == OUTCOMES.index("landed")
+    crashed = code == OUTCOMES.index("crashed")
+    ok = landed & ~res.nonfinite
+    err = np.linalg.norm(res.r_land, axis=1)
     out: dict[str, Any] = {
-        "cases": len(res), "landed": int(res.landed.sum()),
-        "not_landed": int((~res.landed).sum()), "nonfinite": int(res.nonfinite.sum()),
+        "cases": len(res), "landed": int(landed.sum()),
+        "not_landed": int((~landed).sum()), "nonfinite": int(res.nonfinite.sum()),
+        # the ground plane met before the outcome: "crashed", or a touchdown within the landing
+        # tolerance (landed); below_surface: r_z(0) < 0, not flown
+        "crashed": int(crashed.sum()), "below_surface": int(res.below_surface.sum()),
         "ground_contact": int(res.ground_contact.sum()),
         # the mass reached the dry mass before landing (lgw.sim.mars.batch: the case stops there)
         "fuel_exhausted": int(np.sum(res.fuel_exhausted & ~res.landed)),
@@ -149,18 +162,17 @@ def summarize(res: BatchResult) -> dict[str, Any]:
         "step_limit": int(res.step_limit.sum()),
         # one outcome per case (lgw.sim.results: the first that happened), every outcome
         # listed; the flags above may overlap, these do not and sum to "cases"
-        "outcomes": counts(res.outcomes()[0]),
-        "landing_error_m": _stats(err),
-        "landing_speed_mps": _stats(np.linalg.norm(res.v_land[ok], axis=1) if ok.any()
-                                    else np.array([])),
-        "landing_time_s": _stats(res.landing_time[ok]),
-        "fuel_kg": _stats(res.fuel[ok]),
+        "outcomes": counts(code, OUTCOMES_USED),
+        "landing_error_m": _stats(err, ok),
+        "landing_speed_mps": _stats(np.linalg.norm(res.v_land, axis=1), ok),
+        "landing_time_s": _stats(res.landing_time, ok),
+        "fuel_kg": _stats(res.fuel, ok),
         # node peaks (the tuner's measure) and stage peaks (every rhs evaluation of the
         # accepted steps, >= the node peaks; lgw.sim.mars.batch), over landed cases
-        "peak_thrust_N": {ax: _stats(res.peak_thrust[ok, i]) for i, ax in enumerate("xyz")},
-        "peak_thrust_stages_N": {ax: _stats(res.peak_thrust_stages[ok, i])
+        "peak_thrust_N": {ax: _stats(res.peak_thrust[:, i], ok) for i, ax in enumerate("xyz")},
+        "peak_thrust_stages_N": {ax: _stats(res.peak_thrust_stages[:, i], ok)
                                  for i, ax in enumerate("xyz")},
-        "peak_thrust_unsat_stages_N": {ax: _stats(res.peak_thrust_unsat_stages[ok, i])
+        "peak_thrust_unsat_stages_N": {ax: _stats(res.peak_thrust_unsat_stages[:, i], ok)
                                        for i, ax in enumerate("xyz")},
         # per axis, max |F_i| from its first node in the landing band on, over every case
         # whose axis got there ("arrived": how many did)
@@ -168,12 +180,15 @@ def summarize(res: BatchResult) -> dict[str, Any]:
             ax: {**_stats(res.peak_thrust_after_arrival[:, i]),
                  "arrived": int(np.sum(np.isfinite(res.peak_thrust_after_arrival[:, i])))}
             for i, ax in enumerate("xyz")},
-        "time_saturated_s": _stats(res.time_saturated[ok]),
-        # over all cases, up to landing (negative: below ground, see ground_contact)
+        "time_saturated_s": _stats(res.time_saturated, ok),
+        # over all cases, up to the outcome (negative: below ground, see ground_contact)
         "min_altitude_m": _stats(res.min_altitude),
+        # the crashes: impact speed and time at the located contact
+        "impact_speed_mps": _stats(res.impact_speed, crashed),
+        "contact_time_s": _stats(res.contact_time, crashed),
         "eps": res.eps, "dt": res.dt,
     }
-    out["settings"] = {k: v for k, v in res.info.items()}
+    out["settings"] = {k: v for k, v in res.info.items() if k != "refined_dt"}
     if res.nonfinite.any():
         idx = np.flatnonzero(res.nonfinite)
         out["nonfinite_cases"] = [{"case": int(i), "r0": res.r0[i].tolist(),
@@ -194,6 +209,9 @@ def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]
 def iter_case_records(res: BatchResult, n: int | None = None) -> Iterator[dict[str, Any]]:
     """``case_records`` one at a time (a million cases in flat memory)."""
     code, t_out = res.outcomes()
+    imp = res.impact_speed
+    # the RK4 step of a case refined until its outcome settled (lgw.sim.mars.converged)
+    refined = res.info.get("refined_dt", {})
     for i in range(len(res) if n is None else min(n, len(res))):
         yield {
             "case": i, "r0": res.r0[i].tolist(), "v0": res.v0[i].tolist(),
@@ -214,6 +232,12 @@ def iter_case_records(res: BatchResult, n: int | None = None) -> Iterator[dict[s
             "nonfinite": bool(res.nonfinite[i]), "fuel_exhausted": bool(res.fuel_exhausted[i]),
             "step_limit": bool(res.step_limit[i]), "steps": int(res.steps[i]),
             "t_end": _num(res.t_end[i]),
+            # the ground contact (lgw.sim.results): time, point and velocity at the crossing
+            "contact_time": _num(res.contact_time[i]),
+            "contact_point": [_num(x) for x in res.contact_point[i]],
+            "impact_velocity": [_num(x) for x in res.impact_velocity[i]],
+            "impact_speed": _num(imp[i]), "below_surface": bool(res.below_surface[i]),
+            "refined_dt": refined.get(i),
             "eps": res.eps,
             # the case's one outcome (lgw.sim.results.OUTCOMES) and its time, s
             "outcome": OUTCOMES[code[i]], "outcome_time": _num(t_out[i]),

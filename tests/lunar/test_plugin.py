@@ -1,11 +1,13 @@
-"""The pytest plugin of lgw.testing for seed 001, as a user would use it: a ten-line test file
-and a gains file in a temporary project, run by pytest with the installed plugin (entry point
-pytest11).  It passes for the paper's gains and fails, with a shrunk witness re-checked at dt/2
-and a reproduction, when the (19a) bound is deliberately shrunk (the marker's scale option)."""
+"""The pytest plugin of lgw.testing for seed 001 in a fresh pytest process (entry point
+pytest11), as a user's CI runs it: one test per claim passes for the paper's gains, and a
+deliberately shrunk (19a) bound is one clean failure naming observed, bound, state and the
+``lgw verify lunar`` command that reproduces it."""
 
 from __future__ import annotations
 
 import pytest
+
+from tests.test_plugin import LUNAR
 
 pytest_plugins = ["pytester"]
 # a fresh pytest process per run (imports, Hypothesis): tens of seconds on a loaded machine
@@ -15,18 +17,12 @@ USER_TEST = """
 import pytest
 
 
-@pytest.mark.lgw_gains("gains.toml", system="lunar", examples=8, min_cases=10{extra})
-def test_gains_keep_every_proven_bound(lgw_verify):
-    lgw_verify.assert_holds()
+@pytest.mark.lgw_gains("gains.toml", system="lunar", examples=8, min_cases=10, t_max=2.0{extra})
+def test_gains_keep_every_proven_bound(lgw_claim):
+    lgw_claim.assert_holds()
 """
 
-GAINS = """[orbit]
-K1 = [0.1, 0.1, 0.1]
-F2 = [1.0, 1.0, 20.0]
-f3 = 0.25
-d0e0 = 0.0
-q = 0.01
-"""
+GAINS = LUNAR  # seed 001 Section 5's orbit loop
 
 
 def _project(pytester, extra: str = ""):
@@ -35,16 +31,15 @@ def _project(pytester, extra: str = ""):
 
 
 def test_plugin_passes_valid_lunar_gains(pytester):
-    _project(pytester)
+    _project(pytester, ", seed=0")
     res = pytester.runpytest_subprocess("-q")
-    res.assert_outcomes(passed=1)
-    assert (pytester.path / ".pytest_cache" / "d" / "lgw-examples").is_dir()
+    res.assert_outcomes(passed=7)
 
 
-def test_plugin_fails_with_shrunk_witness_for_a_shrunk_lunar_bound(pytester):
-    _project(pytester, ', scale={"(19a)": 0.25}')
+def test_plugin_fails_cleanly_for_a_shrunk_lunar_bound(pytester):
+    _project(pytester, ', claim="(19a)", scale={"(19a)": 0.25}')
     res = pytester.runpytest_subprocess("-p", "no:cacheprovider", "-q")
     res.assert_outcomes(failed=1)
     out = res.stdout.str()
-    assert "(19a) (19a): violated" in out and "re-checked" in out
-    assert "shrunk witness" in out and "from lgw.tuning.lunar.verify import" in out
+    assert "(19a) (19a): observed" in out and "re-checked" in out and "state: x1 = " in out
+    assert "reproduce: lgw verify lunar --gains " in out and "Traceback" not in out

@@ -1,133 +1,101 @@
-"""``lgw verify lunar`` (issue 19) for one gain set's orbit loop on Hypothesis-drawn initial
-errors: per claim checked and excluded counts, never ``holds`` on fewer than --min-cases
-checked cases, exit 1 on a violation (shrunk witness re-checked at half the step, with a
-reproduction), exit 4 when inconclusive, strict JSON, --plot written atomically, bad input
-exit 2 with nothing written."""
+"""``lgw verify lunar`` (lgw.tuning.lunar.verify on the shared lgw.tuning.verifying): per claim
+informative, excluded and total cases, never ``holds`` on cases that cannot violate a claim, a
+provoked violation whose printed reproduction reproduces it (one public ``lgw`` command, no
+private function), strict JSON with the shared head, bad input exit 2 with nothing written."""
 
 import json
-import subprocess
+import shlex
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 from lgw.theory.lunar.gains import paper_gains
-from lgw.tuning.cli import cli
 from lgw.tuning.lunar import verify as V
+from lgw.tuning.verifying import Context
+
+from tests.test_cli_conventions import assert_one_error, run_lgw
+
+FAST = ["--t-max", "2", "--examples", "3", "--min-cases", "5"]
 
 
-def _run(*args):
-    res = CliRunner().invoke(cli, ["verify", "lunar", "--t-end", "2", *args, "--json"])
-    return res.exit_code, json.loads(res.output) if res.output.startswith("{") else res.output
+def _json(args):
+    r = run_lgw(["verify", "lunar", *args, "--json"])
+    assert r.exception is None, r.exception
+    return r.code, json.loads(r.stdout)
 
 
-def test_holds_on_enough_checked_cases_and_plots(tmp_path):
-    code, d = _run("--plot", str(tmp_path / "fig"))
+def test_holds_on_informative_cases_with_the_shared_document():
+    code, d = _json(FAST)
     assert code == 0, d
+    assert list(d)[:3] == ["lgw_version", "command", "gains"] and d["command"] == "verify lunar"
+    assert d["settings"] == {"t_max": 2.0, "dt": 0.02, "thrust_max": 2000.0, "D": 0.5}
     assert [c["claim"] for c in d["claims"]] == list(V.CLAIMS)
     for c in d["claims"]:
-        assert c["verdict"] == "holds"
-        assert c["n_checked"] + c["n_excluded"] == c["n_cases"]
-        assert c["n_checked"] >= d["min_cases"] and c["worst_margin"] >= 0
-        assert 0 < c["fraction_checked"] <= 1
-    png = tmp_path / "fig" / "verify_lunar.png"
-    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
-    assert [p.name for p in (tmp_path / "fig").iterdir()] == ["verify_lunar.png"]
+        n = c["cases"]
+        assert c["verdict"] == "holds" and n["informative"] >= 5, c
+        assert n["informative"] + n["excluded"] == n["total"] and c["margin"] >= 0
+    assert d["margin"].startswith("(bound - observed) / bound")
 
 
-def test_too_few_cases_is_inconclusive_exit_4():
-    code, d = _run("--examples", "2", "--min-cases", "100000")
+def test_saturation_that_never_acts_leaves_18_uninformative():
+    """Without saturation (thrust-max 1e9 N) du = 0 and lambda stays 0: (18a)/(18b) would be
+    0 <= 0 on every case, so no case counts and the claims are inconclusive, not holds."""
+    code, d = _json([*FAST[:2], "--examples", "2", "--min-cases", "1", "--thrust-max", "1e9",
+                     "--claim", "(18a)", "--claim", "(19a)"])
     assert code == 4
-    for c in d["claims"]:
-        assert c["verdict"] == "inconclusive" and "< --min-cases 100000" in c["why"]
-
-
-def test_shrunk_bound_is_violated_with_a_rechecked_witness_exit_1(tmp_path):
-    db = tmp_path / "db"
-    code, d = _run("--scale", "(19a)=0.25", "--database", str(db))
-    assert code == 1
-    # the failure is saved in the example database (replayed first on the next run)
-    assert any(p.is_file() for p in (db / "lunar" / "orbit").rglob("*"))
     c = {c["claim"]: c for c in d["claims"]}
-    r = c["(19a)"]
-    assert r["verdict"] == "violated" and r["bound_scale"] == 0.25
-    w = r["witness"]
-    assert w["margin"] < 0 and w["rechecked_margin"] < 0 and "dt = 0.01" in w["recheck_method"]
-    assert all(c[k]["verdict"] == "holds" for k in c if k != "(19a)")
-    # the reproduction, pasted into a shell, shows the same negative margin
-    out = subprocess.run(["bash", "-c", r["reproduction"]], capture_output=True, text=True,
-                         cwd=tmp_path, check=True).stdout
-    assert float(out.split("margin")[-1]) == pytest.approx(w["margin"], rel=1e-6)
+    assert c["(18a)"]["verdict"] == "inconclusive" and c["(18a)"]["cases"]["informative"] == 0
+    assert any("saturation never acted" in k for k in c["(18a)"]["cases"]["excluded_reasons"])
+    assert c["(19a)"]["verdict"] == "holds"
 
 
-def test_excluded_cases_push_a_claim_to_inconclusive(monkeypatch):
-    # a claim whose margin is undefined (NaN) on every other case: those are excluded and
-    # counted, and the claim is inconclusive once the rest is below --min-cases (never holds)
-    real = V.margins
+def test_provoked_violation_prints_a_reproduction_that_reproduces_it():
+    r = run_lgw(["verify", "lunar", "--t-max", "1", "--examples", "3", "--claim", "(19a)",
+                 "--scale", "(19a)=0.01"])
+    assert r.code == 1, r.stdout
+    assert "_fly_cases" not in r.stdout and "python" not in r.stdout
+    repro = next(ln.split("reproduce: ", 1)[1] for ln in r.stdout.splitlines()
+                 if "reproduce: " in ln)
+    args = shlex.split(repro)
+    assert args[:3] == ["lgw", "verify", "lunar"] and "--t-max" in args
+    observed = next(ln for ln in r.stdout.splitlines() if ln.strip().startswith("observed:"))
+    again = run_lgw(args[1:])
+    assert again.code == 1 and observed in again.stdout, again.stdout
 
-    def margins(t, o, g, case, x1_0, dt, i=0, pairs=None):
-        m = real(t, o, g, case, x1_0, dt, i, pairs)
+
+def test_judge_counts_a_nan_as_excluded_never_as_a_check(monkeypatch):
+    real = V.observations
+
+    def nan21(t, o, g, case, x1_0, dt, i=0):
+        out = real(t, o, g, case, x1_0, dt, i)
         if i % 2:
-            m["(21a)"] = float("nan")
-        return m
+            out["(21a)"] = (out["(21a)"][0], float("nan"), True)
+        return out
 
-    monkeypatch.setattr(V, "margins", margins)
-    res = {r.claim: r for r in V.run_verify(paper_gains().orbit,
-                                           V.VerifyOptions(examples=4, t_end=1.0))}
-    r = res["(21a)"]
-    assert r.n_excluded > 0 and r.n_checked + r.n_excluded == r.n_cases
-    assert r.excluded == {"non-finite run or bound (NaN margin)": r.n_excluded}
-    need = r.n_checked + 1
-    res = {r.claim: r for r in V.run_verify(paper_gains().orbit, V.VerifyOptions(
-        examples=4, t_end=1.0, min_cases=need))}
-    assert res["(21a)"].verdict == "inconclusive" and "excluded" in res["(21a)"].why
-    assert V.result_exit_code(list(res.values())) == 4
+    monkeypatch.setattr(V, "observations", nan21)
+    from lgw.tuning.verifying import Tally
 
-
-def test_claim_result_never_holds_without_evidence():
-    assert V.claim_result(None, 0, 1) == "inconclusive"
-    assert V._exclusion("V2_step_outside_band", np.inf).startswith("no step outside")
-    assert V._exclusion("(18a)", -np.inf) is not None and V._exclusion("(18a)", 0.1) is None
+    ctx = Context(paper_gains(), {"t_max": 1.0, "dt": 0.02, "thrust_max": 2000.0, "D": 0.5},
+                  {}, 0)
+    X = np.array([[10.0, 1.0, 0.0, 0.0], [20.0, 0.0, 1.0, 0.0], [5.0, 0, 0, 1.0]])
+    j = V.judge(ctx, "orbit", X)["(21a)"]
+    t = Tally(V.CLAIMS["(21a)"], V.AXES)
+    t.add(j, 1.0)
+    assert (t.total, t.informative) == (3, 2) and len(t.excluded) == 1
 
 
 @pytest.mark.parametrize("args", [["--min-cases", "0"], ["--scale", "nope=2"],
                                   ["--scale", "(19a)=-1"], ["--dt", "0"],
-                                  ["--profile", "fast"]])
-def test_bad_option_is_one_error_line_exit_2(args, capsys):
-    from lgw.tuning.cli import main
-
-    with pytest.raises(SystemExit) as e:
-        main(["verify", "lunar", *args])
-    assert e.value.code == 2
-    err = capsys.readouterr().err
-    assert err.startswith("error: ") and err.count("\n") == 1
-
-
-@pytest.mark.parametrize("sub", ["", "sub"])
-def test_bad_plot_path_is_exit_2_before_any_work(tmp_path, capsys, sub, monkeypatch):
-    """--plot naming a file, or a folder below a file: one error line, exit 2, nothing
-    written (checked before the campaign)."""
-    from lgw.tuning.cli import main
-
-    def no_work(*a, **k):
-        raise AssertionError("the campaign ran before --plot was checked")
-
-    monkeypatch.setattr(V, "run_verify", no_work)
-    f = tmp_path / "a_file"
-    f.write_text("x")
-    with pytest.raises(SystemExit) as e:
-        main(["verify", "lunar", "--plot", str(f / sub if sub else f)])
-    assert e.value.code == 2
-    err = capsys.readouterr().err
-    assert err.startswith("error: ") and "--plot" in err and err.count("\n") == 1
-    assert [p.name for p in tmp_path.iterdir()] == ["a_file"] and f.read_text() == "x"
+                                  ["--profile", "fast"], ["--t-max", "0"]])
+def test_bad_option_is_one_error_line_exit_2(args):
+    assert_one_error(run_lgw(["verify", "lunar", *args]))
 
 
 @pytest.mark.parametrize("system", ["mars", "lunar", "eros"])
 def test_a_database_makes_the_run_random_so_hypothesis_uses_it(system, tmp_path):
     """Hypothesis ignores the example database in a seeded run (hypothesis.seed sets
-    database=None), so --database must drop the seed, or it would silently do nothing."""
-    import importlib
+    database=None), so --database gives a random run: the document says seed null."""
+    from lgw.tuning.system import get_system
 
-    VO = importlib.import_module(f"lgw.tuning.{system}.verify").VerifyOptions
-    assert VO(seed=3).seed == 3
-    assert VO(seed=3, database=tmp_path).seed is None
+    mod = get_system(system).verb("verify").load()
+    assert mod.Options(seed=3).run_seed == 3
+    assert mod.Options(database=tmp_path).run_seed is None

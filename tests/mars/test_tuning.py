@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -63,6 +64,34 @@ def test_design_problem_is_dgp(env3: Envelope, bound: str, dist: bool) -> None:
         prob, _ = build_gp(EXPS, req, env3, branch)
         assert prob.is_dgp(), (bound, dist, branch)
         assert not prob.is_dcp()
+
+
+def test_reused_family_equals_a_fresh_build(env3: Envelope) -> None:
+    """The DPP family re-solved for another exponent set and tf gives the optimum of a program
+    built from scratch for them (the cache is keyed on the request's structure only)."""
+    from lgw.tuning.mars import design as D
+
+    reqs = (Request(tf=80.0, thrust_max=5e4), Request(tf=150.0, thrust_max=5e4, bound="polyakov",
+                                                       limit="norm", a_max=0.5,
+                                                       neighborhood=20.0))
+    sets = (Exponents(0.6, 3.0, 0.5, 2.0), Exponents(0.8, 1.5, 0.3, 4.0))
+    for req in reqs:
+        D.solve_gp(sets[0], replace(req, tf=0.7 * req.tf), env3)  # the family exists
+        reused = D.solve_gp(sets[1], req, env3)
+        D._FAMILIES.clear()
+        fresh = D.solve_gp(sets[1], req, env3)
+        assert reused.status.startswith("optimal") and fresh.status.startswith("optimal")
+        np.testing.assert_allclose(reused.value, fresh.value, rtol=1e-6)
+        # the optimum can be flat in gains that no active constraint fixes: compare what the
+        # program promises instead, the proven bound of both gain sets
+        for g in (reused.gains, fresh.gains):
+            for b in axis_bounds(g).values():
+                key = "landing_time_bound" if req.bound == "exact" else \
+                    "landing_time_bound_polyakov"
+                if req.a_max is None:
+                    assert b[key] <= req.tf
+                else:
+                    assert b["landing_time_bound_disturbed"] <= req.tf
 
 
 def test_bound_terms_match_theory() -> None:
@@ -232,3 +261,43 @@ def test_whole_box_is_not_certifiable_where_the_command_is_infinite() -> None:
     assert "2.0 %" in whole_box_note(env, 0.02, 5e4, "axis")
     t2 = envelope_from_name("table2")
     assert t2.singular_state() is None and whole_box_note(t2, 0.0, 5e4, "axis") is None
+
+
+def _fuel_limited_sim(slowest: float):
+    """A stand-in simulator (no numba): a gain set whose proven landing bound exceeds
+    ``slowest`` s never lands (it hovers until the propellant is gone); faster ones land at
+    half their bound with the command at half the limit."""
+    from lgw.sim.mars.batch import ARRAY_FIELDS, VECTOR_FIELDS, BatchResult
+
+    def sim(r, v, m, gains, *, thrust_limit, dt, **kw):
+        n = len(r)
+        T = max(b["landing_time_bound"] for b in axis_bounds(gains).values())
+        f = {k: np.zeros((n, 3)) if k in VECTOR_FIELDS else np.zeros(n) for k in ARRAY_FIELDS}
+        f["y_end"] = np.zeros((n, 7))
+        for k in ("landed", "nonfinite", "ground_contact", "fuel_exhausted", "step_limit",
+                  "blown_up"):
+            f[k] = np.zeros(n, dtype=bool)
+        f["landed"][:] = T <= slowest
+        f["landing_time"][:] = T / 2 if T <= slowest else np.nan
+        f["peak_thrust_unsat"][:] = 0.5 * thrust_limit
+        f["min_altitude"][:] = 1.0
+        return BatchResult(eps=1e-6, dt=dt, **f)
+
+    return sim
+
+
+def test_a_looser_target_is_never_refused_for_slow_gains() -> None:
+    """tf = 1000 s: the budgets near tf give gains too slow to land (the stand-in's propellant
+    runs out past 150 s); the tuner descends the absolute budget ladder and finds one that
+    lands, as the tighter target tf = 140 s does directly."""
+    from lgw.tuning.mars import design as D
+
+    env = envelope_from_name("table3")
+    sim = _fuel_limited_sim(150.0)
+    tight = tune(Request(tf=140.0, thrust_max=5e4), env, sim=sim, fast=True, n_mc=8)
+    assert tight.feasible, tight.reason
+    loose = tune(Request(tf=1000.0, thrust_max=5e4), env, sim=sim, fast=True, n_mc=8)
+    assert loose.feasible, loose.reason
+    assert loose.info["gp_time_budget"] <= 150.0
+    assert loose.info["gp_time_budget"] in D.BUDGET_LADDER
+    assert max(loose.info["budgets_searched"]) == 1000.0

@@ -6,7 +6,9 @@ Valid ranges are the hypotheses the derivations use:
   k > 0                            switching gain of (18)
   N, M > 0                         fuzzy weights (22)
   phi > 0                          boundary layer of tanh(s/phi)
-  e_floor > 0                      floor of |e| in |e|^(p/q - 1) (claim singular-term)
+  e_floor > 0                      floor of |e| in |e|^(p/q - 1) (claim singular-term); an
+                                   implementation parameter, not a gain of the paper: optional,
+                                   default parameters.DEFAULT_GAINS["e_floor"] (docs/eros.md)
 Parsing never evaluates user text: values must already be TOML numbers.
 """
 
@@ -66,8 +68,12 @@ def _number(name: str, value: Any) -> float:
     return x
 
 
+OPTIONAL = ("e_floor",)  # keys with a documented default (parameters.DEFAULT_GAINS)
+
+
 def gains_from_dict(data: dict[str, Any]) -> Gains:
-    """Validate a parsed gains document (table [gains]); every key required, none unknown."""
+    """Validate a parsed gains document (table [gains]); every key but ``OPTIONAL`` required,
+    none unknown."""
     g = data.get("gains")
     if not isinstance(g, dict):
         raise ParameterError("gains", g, "missing table [gains]")
@@ -75,6 +81,10 @@ def gains_from_dict(data: dict[str, Any]) -> Gains:
         if key not in KEYS:
             raise ParameterError(f"gains.{key}", g[key], f"unknown key; valid keys are "
                                  f"{', '.join(KEYS)}")
+    if any(k not in g for k in OPTIONAL):
+        from lgw.theory.eros.parameters import DEFAULT_GAINS
+
+        g = {**{k: DEFAULT_GAINS[k] for k in OPTIONAL}, **g}
     for key in KEYS:
         if key not in g:
             raise ParameterError(f"gains.{key}", None, "missing; " + _RANGES[key])

@@ -1,6 +1,6 @@
 """Seed 002 (probe landing on 433 Eros, fuzzy fast terminal sliding mode) as a ``System``."""
 
-from lgw.tuning.system import Legacy, NotApplicable, System, Verb
+from lgw.tuning.system import NotApplicable, System, Verb
 
 _M = "lgw.tuning.eros"
 
@@ -16,13 +16,14 @@ SYSTEM = System(
                          "vs derived, for a gain set"),
         "simulate": Verb(f"{_M}.cmd_simulate", "the six controllers on the 15 s scenario "
                            "or a Monte Carlo campaign"),
-        "verify": Legacy(f"{_M}.cmd_verify", "Monte Carlo tracking times against the proven "
+        "verify": Verb(f"{_M}.cmd_verify", "Monte Carlo tracking times against the proven "
                          "per-case reaching + sliding bound"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
         "tune": Verb(f"{_M}.cmd_tune", "alpha, beta, p/q, k for a settling target and a "
                        "control limit, with a certificate"),
-        "compare": NotApplicable("pending"),
+        "compare": Verb(f"{_M}.cmd_compare", "the six controllers on Table 2's metrics and "
+                          "the tracking times, 15 s scenario (table, JSON, figure)"),
         "optimal": NotApplicable("pending"),
         "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
                        "one step"),

@@ -1,7 +1,7 @@
 """Seed 001 (lunar descent, adaptive backstepping with saturation and failure) as a
 ``System``."""
 
-from lgw.tuning.system import Legacy, NotApplicable, System, Verb
+from lgw.tuning.system import NotApplicable, System, Verb
 
 _M = "lgw.tuning.lunar"
 
@@ -17,12 +17,14 @@ SYSTEM = System(
                          "gains, and (19)-(21) for a case"),
         "simulate": Verb(f"{_M}.cmd_simulate", "fly the Section 5 scenario (or random "
                            "cases): errors, thrust, torque, d0e, V2"),
-        "verify": Legacy(f"{_M}.cmd_verify", "property campaign: V2 (13), (18), (19), (21a) "
+        "verify": Verb(f"{_M}.cmd_verify", "property campaign: V2 (13), (18), (19), (21a) "
                          "against measured runs"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
-        "tune": NotApplicable("pending"),
-        "compare": NotApplicable("pending"),
+        "tune": Verb(f"{_M}.cmd_tune", "gains, command filter and thrust redundancy for a "
+                       "tracking target and the thrust limit with the failure, certified"),
+        "compare": Verb(f"{_M}.cmd_compare", "Section 5 with and without failure and "
+                          "saturation, ideal against coupled pointing, the filter swept"),
         "optimal": NotApplicable("pending"),
         "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
                        "one step"),

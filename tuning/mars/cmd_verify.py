@@ -1,132 +1,67 @@
-"""``lgw verify mars``: seed 000's proven bounds for one gain set, never passing on missing
-evidence (``lgw.tuning.mars.verify``).  Exit 0 holds, 1 violated, 4 inconclusive, 2 bad input."""
+"""Check seed 000's proven bounds for a gain set (corrected law): ``lgw verify mars``.
+
+Per claim, Hypothesis-driven simulations of the 3-axis plant (RK4, no drag, no thrust limit:
+the plant of the bounds) from initial states of the envelope (default: a tuned file's
+certificate envelope, else seed 000's Table III box and Table II dispersion), and a
+falsification search on the exact reduced per-axis loop over the same states.  Margin =
+(bound - observed)/bound, < 0 violates.  Exit 0 holds (or not applicable), 1 violated (with
+the observed value, the bound, the state, the gains and a reproducing ``lgw verify`` command),
+4 inconclusive (too few informative cases, too many excluded, or an unconfirmed violation).
+"""
 
 from __future__ import annotations
 
-import math
-import sys
-from pathlib import Path
+from dataclasses import dataclass
+from typing import ClassVar
 
-import click
-from lgw.theory.errors import ParameterError
-from lgw.tuning.io import check_out_dir, console, json_document
-from lgw.tuning.mars.options import resolve_gains
-from lgw.tuning.mars.verify import (
-    CLAIMS,
-    MIN_CASES,
-    PROFILES,
-    VerifyOptions,
-    certificate_scale,
-    exit_code,
-    run_verify,
-)
-from lgw.tuning.options import SEED, Integer, Number, choice, gains_option
-from lgw.tuning.verify_common import print_claim_details
-from rich.console import Console
-from rich.table import Table
+from lgw.tuning import vocabulary as V
+from lgw.tuning.options import Number
+from lgw.tuning.spec import option
+from lgw.tuning.verifying import Claim, Extra, Var, plan, verify_options
+
+TOL = "one RK4 step dt (an event is located on the step grid)"
+CLAIMS = {c.name: c for c in (
+    Claim("reaching-16", "(16),(18)", "reaching",
+          "first time |s1_i| <= eps, started on s2 = 0",
+          "T1_exact of lgw.theory.mars.bounds.axis_bounds (<= T1 (18))", "s",
+          "|s1_i(0)| <= eps: it starts inside the band it must reach", TOL),
+    Claim("T2-26", "(26)", "undisturbed", "first time |s2_i| <= eps",
+          "T2_exact of axis_bounds (<= T2 (26))", "s",
+          "|s2_i(0)| <= eps: it starts inside the band it must reach", TOL),
+    Claim("landing-T2+T1", "T2*+T1*", "undisturbed",
+          "the later of the first entry into |r_i| <= eps and the last exit from it, inf if "
+          "|r_i| > eps or |v_i| > eps' at the end",
+          "landing_time_bound = T2_exact + T1_exact of axis_bounds", "s",
+          "|r_i(0)| <= eps and |s2_i(0)| <= eps: it starts landed", TOL),
+    Claim("s2-39-40", "(39),(40)", "disturbed",
+          "first time |s2_i| is in the (39) band, under |a_p,i| <= a_max (worst and random); "
+          "leaving the band afterwards is a violation",
+          "T2_practical_exact of axis_bounds", "s",
+          "|s2_i(0)| is inside the (39) band: there is no entry to time", TOL),
+    Claim("s1-31-45", "(31),(45)", "disturbed",
+          "first time |r_i| is in the (31) band from s2's entry into (39) on; leaving it "
+          "afterwards is a violation",
+          "landing_time_bound_disturbed = T2_practical_exact + T1_practical_exact of "
+          "axis_bounds", "s",
+          "|r_i| is inside the (31) band when s2 enters (39): there is no entry to time", TOL),
+)}
+VARIABLES = tuple(Var(n, "m", "position", nonzero=True) for n in ("rx", "ry", "rz")) + tuple(
+    Var(n, "m/s", "velocity") for n in ("vx", "vy", "vz"))
+EXTRAS = (Extra("disturbance", ("worst", "random"), "the disturbance flown (disturbed claims)"),
+          Extra("noise_seed", "int", "seed of the random disturbance"),
+          Extra("noise_case", "int", "case index of the random disturbance"))
 
 
-def _parse_scale(items: tuple[str, ...]) -> dict[str, float]:
-    out = {}
-    for it in items:
-        name, _, val = it.partition("=")
-        if name not in CLAIMS:
-            raise ParameterError("--scale-bound", it, f"CLAIM=FACTOR, CLAIM in {', '.join(CLAIMS)}")
-        try:
-            out[name] = float(val)
-        except ValueError:
-            raise ParameterError("--scale-bound", it, "FACTOR must be a number") from None
-    return out
+@dataclass(frozen=True)
+class Options(verify_options("lgw.tuning.mars.verify", CLAIMS, VARIABLES,
+                             "rx=-500.0,ry=1000.0,rz=1200.0,vx=10.0,vy=-50.0,vz=-40.0",
+                             {"ci": 20, "thorough": 150}, EXTRAS, module=__name__)):
+    SETTINGS: ClassVar = ("dt", "eps")
+
+    dt: float = V.dt(0.05, 1.0, "RK4 step (the re-check flies at dt/2)")
+    eps: float = option("--eps", Number(0, 1e3, lo_open=True, unit="m or m/s"), 0.05,
+                        "the bands |s1_i| <= eps (m) and |s2_i| <= eps (m/s) of the time claims",
+                        probe=0.1)
 
 
-def _fmt(x: float, spec: str = ".4g") -> str:
-    return "-" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
-
-
-@click.command("mars")
-@gains_option
-@click.option("--profile", type=choice(PROFILES), default="ci", show_default=True,
-              help="ci: 20 Hypothesis examples per claim group, small search budget; "
-                   "thorough: 150 examples, a larger search")
-@click.option("--seed", type=SEED, default=0, show_default=True,
-              help="derandomised run with this seed (Hypothesis and the search); integer in "
-                   "[0, 2^64 - 1]")
-@click.option("--random", "random_", is_flag=True, help="a random run (ignores --seed)")
-@click.option("--examples", type=Integer(1, 100_000, "examples"), default=None,
-              help="Hypothesis examples per claim group [default: the profile's]")
-@click.option("--min-cases", type=Integer(1, 10**7, "cases"), default=MIN_CASES,
-              show_default=True, help="checked simulated cases a claim needs for 'holds'")
-@click.option("--database", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Hypothesis example database folder: replays earlier failures first and "
-                   "saves new ones; makes the run random (Hypothesis uses no database in a "
-                   "seeded run) [default: none]")
-@click.option("--dt", type=Number(0, 1, lo_open=True, unit="s"), default=0.05,
-              show_default=True, help="RK4 step (s)")
-@click.option("--eps", type=Number(0, lo_open=True, unit="m or m/s"), default=0.05,
-              show_default=True, help="sliding band (m, m/s)")
-@click.option("--scale-bound", "scale", multiple=True, hidden=True,
-              help="CLAIM=FACTOR: multiply a bound (self-test of the checker)")
-@click.option("--no-simulate", "no_sim", is_flag=True, hidden=True,
-              help="search only (no simulation: every claim is then inconclusive or violated)")
-@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
-              default=None, help="write verify_mars.png (observed against bound, one point "
-                                 "per checked simulated case and axis) to DIR [default: none]")
-@click.option("--json", "as_json", is_flag=True,
-              help="print one JSON object (schema: docs/json.md)")
-def command(gains_path: Path | None, profile: str, seed: int, random_: bool,
-            examples: int | None, min_cases: int, database: Path | None, dt: float, eps: float,
-            scale: tuple[str, ...], no_sim: bool, plot_dir: Path | None, as_json: bool) -> None:
-    """Check seed 000's proven bounds for a gain set (corrected law).
-
-    Per claim: a falsification search on the exact reduced per-axis loop and Hypothesis-driven
-    simulations; the verdict is holds (>= --min-cases checked cases, no violation), violated
-    (exit 1, shrunk witness and a ready-to-paste reproduction) or inconclusive (exit 4).
-    """
-    check_out_dir(plot_dir, "--plot")  # before any work
-    g = resolve_gains(gains_path)
-    sc = {**certificate_scale(g), **_parse_scale(scale)}
-    opts = VerifyOptions(profile=profile, seed=None if random_ else seed, database=database,
-                         min_cases=min_cases, dt=dt, eps=eps, scale=sc, examples=examples,
-                         simulate=not no_sim)
-    con = Console(stderr=True)
-    if as_json:
-        results = run_verify(g, opts)
-    else:
-        with con.status("verifying") as st:
-            results = run_verify(g, opts, progress=lambda s: st.update(s))
-    code = exit_code(results)
-    if plot_dir is not None:
-        from lgw.tuning.figures import write_verify_plot
-        from lgw.tuning.mars.verify import plot_panels
-
-        path = write_verify_plot(plot_dir, "mars", plot_panels(results),
-                                 f"lgw verify mars: profile {profile}, seed {opts.seed}, "
-                                 f"dt {dt} s")
-        if not as_json:
-            con.print(f"wrote {path}")
-    if as_json:
-        click.echo(json_document({"command": "verify mars", **g.to_dict(), "profile": profile,
-                                  "seed": opts.seed, "dt": dt, "eps": eps,
-                                  "min_cases": min_cases, "scale": sc,
-                                  "claims": [r.to_dict() for r in results],
-                                  "exit_code": code}, indent=2))
-        sys.exit(code)
-    t = Table(title=f"lgw verify mars: profile {profile}, seed {opts.seed}, dt {dt}, eps {eps}")
-    for col in ("claim", "eq.", "checked/cases", "dopri5", "excluded", "worst obs/bound",
-                "search best margin", "verdict"):
-        t.add_column(col)
-    for r in results:
-        color = {"holds": "green", "violated": "red"}.get(r.verdict, "yellow")
-        best = min((s["best_margin"] for s in r.search), default=math.nan)
-        t.add_row(r.claim, r.equation, f"{r.n_checked}/{r.n_cases}", str(r.n_adaptive),
-                  str(r.n_excluded), _fmt(r.ratio, ".3g"), _fmt(best, ".3g"),
-                  f"[{color}]{r.verdict}[/]")
-    out = console()
-    out.print(t)
-    out.print("checked = simulated cases judged (dopri5: of them, carried by the adaptive path "
-              "after RK4 could not); excluded: no integrator carried them; search best margin "
-              "= least (bound - observed)/bound on the reduced loop, < 0 violates")
-    print_claim_details(out, results, extra=lambda r: [
-        f"{r.claim} search (axis {s['axis']}): {s['evaluations']} evaluations, "
-        f"best margin {s['best_margin']:.4g}, {s['status']}" for s in r.search])
-    sys.exit(code)
+__all__ = ["CLAIMS", "EXTRAS", "VARIABLES", "Options", "plan"]

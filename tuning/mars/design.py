@@ -80,13 +80,18 @@ Q1_RANGE = (0.55, 0.95)  # q1 near 1/2 makes post-arrival chatter spikes frequen
 G1_RANGE = (0.1, 0.95)
 Q2_RANGE = (1.05, 5.0)
 G2_RANGE = (1.05, 5.0)
+# Time budgets tried below 0.5 tf when the budgets near tf fail (``tune``): one absolute grid,
+# 30 s x 2^(k/4) (ratio 1.19), so that every target searches the same budgets below it.
+BUDGET_LADDER = tuple(30.0 * 2 ** (k / 4) for k in range(-8, 41))
 COARSE_GRID = {"q1": (0.55, 0.6, 0.7), "q2": (2.0, 3.0, 4.0),
                "g1": (0.4, 0.6, 0.8), "g2": (2.0, 3.0, 4.0)}
-# A case "goes below ground" if r_z < -GROUND_TOL before landing.  In continuous time the
-# no-crossing lemma keeps r_z >= 0 on E; the fixed-step RK4 chatters around r_z = 0 when z
-# converges before x and y (the laws are not Lipschitz at s = 0), by up to ~1 cm at dt = 0.01 s.
-# The tolerance is the landing tolerance LAND_POS_TOL (what "at the target" means); the strict
-# count (any r_z < 0 at a node) and the least altitude are reported next to it.
+# A case "goes below ground" if it meets the ground before landing: the simulator's contact
+# (lgw.sim.results: a crossing of r_z = 0 faster than the landing speed tolerance, or deeper than
+# GROUND_TOL, which ends the case as "crashed").  In continuous time the no-crossing lemma keeps
+# r_z >= 0 on E; the fixed-step RK4 chatters around r_z = 0 when z converges before x and y (the
+# laws are not Lipschitz at s = 0), by up to ~1 cm at dt = 0.01 s: a graze, not a contact.  The
+# tolerance is the landing tolerance LAND_POS_TOL (what "at the target" means); the strict
+# count (any r_z < 0 before the outcome) and the least altitude are reported next to it.
 GROUND_TOL = LAND_POS_TOL
 # Cases over the thrust limit are re-flown at dt/4 and dt/16 (refine_over_limit); a peak that
 # converges under the limit (dt/4 and dt/16 within REFINE_RTOL) was a fixed-step spike.
@@ -355,7 +360,7 @@ def bound_terms(bound: str, e1: float, e2: float) -> tuple[float, float, float]:
 
 
 def time_bound_expr(bound: str, e1: float, e2: float, gain1: Any, gain2: Any) -> Any:
-    """The settling-time bound of one surface as a cvxpy (DGP) or numpy expression."""
+    """The settling-time bound of one surface as a numpy expression (``bound_terms``)."""
     c, x, y = bound_terms(bound, e1, e2)
     if bound == "exact":
         return c * gain1**x * gain2**y
@@ -371,6 +376,7 @@ class GPResult:
     gains: Gains | None
     proxy: np.ndarray
     value: float
+    # the family's shared program (its values are those of the latest solve of the family)
     problem: cp.Problem | None = None
     branch: tuple[int, int] | None = None
     time_budget: float = float("nan")  # the tf the GP was solved for (<= the requested tf)
@@ -421,73 +427,154 @@ class Request:
         return Disturbance(float(self.a_max), float(self.theta1), float(self.theta2))
 
 
-def initial_command_bound(v: dict[str, Any], e: Exponents, i: int, r: float, u: float,
-                          ) -> tuple[Any, Any]:
-    """Posynomial upper bound (m/s^2) of the corrected law's kinematic command at t = 0 on
-    axis i from (r, u), and the posynomial S that bounds |s2(0)| (S is a GP variable).
+class GPFamily:
+    """The design DGP for one envelope and one request structure (thrust limit, limit kind,
+    bound kind, disturbance, neighbourhood branch), with every number that depends on the
+    exponents or on tf a cvxpy ``Parameter``.  The outer loop solves the same program for
+    hundreds of exponent sets; as a DPP program it is canonicalised once and each later solve
+    only re-fills the solver's data (``set`` then ``solve``).
 
-    |u0| <= (b1 q1 d^(q1-1) + b2 q2 d^(q2-1)) |v| + a1 |s2|^g1 + a2 |s2|^g2, d = |r|, and
-    |s2(0)| = |v| + b1 d^q1 + b2 d^q2 when v points away from the target (or is 0), while
-    moving toward it |s2(0)| = |v_ref(d) - |v|| <= v_ref(d) = b1 d^q1 + b2 d^q2 on E (no-crossing
-    constraint).  The command is largest at t = 0 for most states (|s2| only decreases), which
-    is why this ranks gain sets well; the simulation checks the whole flight."""
-    b1, b2, a1, a2 = v["b1"][i], v["b2"][i], v["a1"][i], v["a2"][i]
-    d = max(abs(r), 1e-3)
-    away = u * np.sign(r) > 0 or r == 0
-    s2 = b1 * d**e.q1 + b2 * d**e.q2 + (abs(u) if away else 0.0)
-    S = cp.Variable(pos=True)
-    cmd = a1 * S**e.g1 + a2 * S**e.g2
-    if u != 0:
-        cmd = cmd + (b1 * e.q1 * d ** (e.q1 - 1) + b2 * e.q2 * d ** (e.q2 - 1)) * abs(u)
-    return cmd, s2 / S <= 1
+    Per axis i (module docstring): the time constraint T1/theta2 + T2/theta1 <= tf with
+    T = c gain1^x gain2^y (exact) or c1/gain1 + c2/gain2 (polyakov); the initial-command proxy
+    at every extreme state (r, u) of the axis,
+      |u0| <= (b1 q1 d^(q1-1) + b2 q2 d^(q2-1)) |u| + a1 S^g1 + a2 S^g2,
+      S >= b1 d^q1 + b2 d^q2 (+ |u| when v points away from the target or r = 0),
+    with d = max(|r|, 1 mm); the no-crossing constraint b1 >= min(c_a, c_b); with a_max, the
+    neighbourhood constraints (39), (31) of the chosen branch.  The minimised proxy is the
+    sum (axis limit) or the sum of squares (norm limit) of the per-axis t_i >= (command +
+    gravity + drag) / 1, in units of the thrust limit."""
+
+    def __init__(self, req: Request, env: Envelope, branch: tuple[int, int] | None) -> None:
+        self.bound, self.branch = req.bound, branch
+        self.env = env  # kept: the cache key holds id(env)
+        rng = env.axis_ranges()
+        P = cp.Parameter
+        v: dict[str, Any] = {k: cp.Variable(3, pos=True, name=k)
+                             for k in ("b1", "b2", "a1", "a2", "t")}
+        self.v = v
+        # exponent-dependent scalars, shared by the three axes
+        self.tf = P(pos=True)
+        self.e = {k: P() for k in ("q1", "q2", "g1", "g2")}
+        if req.bound == "exact":
+            self.T = {s: (P(pos=True), P(), P()) for s in ("q", "g")}
+        else:
+            self.T = {s: (P(pos=True), P(pos=True)) for s in ("q", "g")}
+        self.states: list[tuple[int, np.ndarray, np.ndarray, dict[str, Any]]] = []
+        self.cmin: dict[int, tuple[Any, float, float]] = {}
+        d = req.disturbance
+        th1, th2 = (d.theta1, d.theta2) if d is not None else (1.0, 1.0)
+        a_b = env.a_brake(req.thrust_max, req.limit)
+        cons = []
+
+        def T(s: str, gain1: Any, gain2: Any) -> Any:
+            if req.bound == "exact":
+                c, x, y = self.T[s]
+                return c * gain1**x * gain2**y
+            c1, c2 = self.T[s]
+            return c1 * gain1 ** (-1) + c2 * gain2 ** (-1)
+
+        for i in range(3):
+            b1, b2, a1, a2, t = (v[k][i] for k in ("b1", "b2", "a1", "a2", "t"))
+            # a relative 1e-7 below tf so that solver tolerance cannot put the bound above it
+            cons.append(T("q", b1, b2) / th2 + T("g", a1, a2) / th1 <= self.tf * (1 - 1e-7))
+            U = float(rng["U"][i])
+            fixed = abs(float(G_MARS[i])) + _RHO_CD * AREA[i] * U**2 / (2 * float(env.lo[6]))
+            ext = env.axis_extremes(i, req.thrust_max, req.limit)
+            dd = np.array([max(abs(r0), 1e-3) for r0, _ in ext])
+            au = np.array([abs(u0) for _, u0 in ext])
+            # one parameter vector per axis and quantity (d^q1, d^q2, q d^(q-1) |u| per state):
+            # cvxpy validates each parameter on assignment, so few large ones are cheap
+            p = {k: P(len(ext), pos=True) for k in ("d_q1", "d_q2", "k1", "k2")}
+            self.states.append((i, dd, au, p))
+            for j, (r0, u0) in enumerate(ext):
+                away = u0 * np.sign(r0) > 0 or r0 == 0
+                S = cp.Variable(pos=True)
+                s2 = b1 * p["d_q1"][j] + b2 * p["d_q2"][j]
+                if away and u0 != 0:
+                    s2 = s2 + abs(u0)
+                cmd = a1 * S ** self.e["g1"] + a2 * S ** self.e["g2"]
+                if u0 != 0:
+                    cmd = cmd + b1 * p["k1"][j] + b2 * p["k2"][j]
+                cons += [s2 / S <= 1, (cmd + fixed) / t <= 1]
+            # No crossing on E (module docstring): b1 d^q1 >= min(u_toward, sqrt(2 kappa a d))
+            # for all d >= d_lo holds if b1 >= min(c_a, c_b) (q1 > 1/2).
+            if rng["u_toward"][i] > 0:
+                d_lo = max(float(rng["d_lo"][i]), 1e-3)
+                c = P(pos=True)
+                self.cmin[i] = (c, d_lo, float(rng["u_toward"][i]),
+                                float(np.sqrt(2 * env.brake_fraction * max(a_b[i], 1e-9))))
+                cons.append(c / b1 <= 1)
+            if d is not None:
+                j, k = branch if branch is not None else (0, 0)
+                ak = a1 if k == 0 else a2
+                bj = b1 if j == 0 else b2
+                if "M" not in v:
+                    v["M"] = cp.Variable(3, pos=True, name="M")
+                    self.neg_ek, self.n_ej = P(), P(pos=True)
+                M = v["M"][i]
+                # (39): (a_max/((1-theta1) alpha_k))^(1/e_k) <= M;
+                # (31): (M/((1-theta2) beta_j))^(1/e_j) <= neighborhood.  s1_bound <= N iff
+                # some branch (j, k) satisfies both (each min is of increasing functions).
+                cons.append(d.a_max / (1 - d.theta1) * ak ** (-1) * M ** self.neg_ek <= 1)
+                cons.append(M / ((1 - d.theta2) * bj * self.n_ej) <= 1)
+        self.neighborhood = req.neighborhood
+        scale = env.m_max / req.thrust_max  # objective in units of the thrust limit
+        if req.limit == "norm":
+            obj = cp.sum(cp.power(scale * v["t"], 2))
+        else:
+            obj = cp.sum(scale * v["t"])
+        self.problem = cp.Problem(cp.Minimize(obj), cons)
+
+    def set(self, exps: Exponents, tf: float) -> None:
+        """Fill the parameters for ``exps`` and the time budget ``tf``."""
+        exps.check()
+        self.tf.value = float(tf)
+        for k, par in self.e.items():
+            par.value = float(getattr(exps, k))
+        for s, (e1, e2) in (("q", (exps.q1, exps.q2)), ("g", (exps.g1, exps.g2))):
+            c, x, y = bound_terms(self.bound, e1, e2)
+            vals = (c, x, y) if self.bound == "exact" else (c, x)
+            for par, val in zip(self.T[s], vals, strict=True):
+                par.value = float(val)
+        for _i, dd, au, p in self.states:
+            p["d_q1"].value, p["d_q2"].value = dd**exps.q1, dd**exps.q2
+            # |u| = 0 entries are unused (no term): any positive value keeps the parameter valid
+            au = np.where(au > 0, au, 1.0)
+            p["k1"].value = exps.q1 * dd ** (exps.q1 - 1) * au
+            p["k2"].value = exps.q2 * dd ** (exps.q2 - 1) * au
+        for par, d_lo, u_toward, sq in self.cmin.values():
+            par.value = float(min(sq * d_lo ** (0.5 - exps.q1), u_toward * d_lo ** (-exps.q1)))
+        if "M" in self.v:
+            j, k = self.branch if self.branch is not None else (0, 0)
+            self.neg_ek.value = -(exps.g1 if k == 0 else exps.g2)
+            self.n_ej.value = float(self.neighborhood ** (exps.q1 if j == 0 else exps.q2))
+
+
+_FAMILIES: dict[tuple[Any, ...], GPFamily] = {}
+_FAMILIES_MAX = 32
+
+
+def gp_family(req: Request, env: Envelope, branch: tuple[int, int] | None) -> GPFamily:
+    """The cached ``GPFamily`` of (envelope, request structure, branch); tf and the exponents
+    are parameters, so every exponent set and time budget of one tuning run shares one."""
+    key = (id(env), req.thrust_max, req.limit, req.bound, req.a_max, req.neighborhood,
+           req.theta1, req.theta2, branch)
+    fam = _FAMILIES.get(key)
+    if fam is None or fam.env is not env:
+        if len(_FAMILIES) >= _FAMILIES_MAX:
+            _FAMILIES.pop(next(iter(_FAMILIES)))
+        fam = _FAMILIES[key] = GPFamily(req, env, branch)
+    return fam
 
 
 def build_gp(exps: Exponents, req: Request, env: Envelope,
              branch: tuple[int, int] | None = None) -> tuple[cp.Problem, dict[str, Any]]:
-    """The DGP for fixed exponents (see the module docstring).  ``branch`` = (j, k) picks which
-    monomial of the min in (39) (k: alpha_k) and (31) (j: beta_j) meets the neighborhood."""
-    exps.check()
-    rng = env.axis_ranges()
-    v: dict[str, Any] = {k: cp.Variable(3, pos=True, name=k)
-                         for k in ("b1", "b2", "a1", "a2", "t")}
-    cons = []
-    d = req.disturbance
-    th1, th2 = (d.theta1, d.theta2) if d is not None else (1.0, 1.0)
-    a_b = env.a_brake(req.thrust_max, req.limit)
-    for i in range(3):
-        b1, b2, a1, a2, t = (v[k][i] for k in ("b1", "b2", "a1", "a2", "t"))
-        T1 = time_bound_expr(req.bound, exps.q1, exps.q2, b1, b2)
-        T2 = time_bound_expr(req.bound, exps.g1, exps.g2, a1, a2)
-        # a relative 1e-7 below tf so that solver tolerance cannot put the bound above it
-        cons.append(T1 / th2 + T2 / th1 <= req.tf * (1 - 1e-7))
-        U = float(rng["U"][i])
-        fixed = abs(float(G_MARS[i])) + _RHO_CD * AREA[i] * U**2 / (2 * float(env.lo[6]))
-        for r0, u0 in env.axis_extremes(i, req.thrust_max, req.limit):
-            cmd, c_s = initial_command_bound(v, exps, i, r0, u0)
-            cons += [c_s, (cmd + fixed) / t <= 1]
-        # No crossing on E (module docstring): b1 d^q1 >= min(u_toward, sqrt(2 kappa a d)) for
-        # all d >= d_lo holds if b1 >= min(c_a, c_b) (q1 > 1/2).
-        if rng["u_toward"][i] > 0:
-            d_lo = max(float(rng["d_lo"][i]), 1e-3)
-            c_a = np.sqrt(2 * env.brake_fraction * max(a_b[i], 1e-9)) * d_lo ** (0.5 - exps.q1)
-            c_b = float(rng["u_toward"][i]) * d_lo ** (-exps.q1)
-            cons.append(min(c_a, c_b) / b1 <= 1)
-        if d is not None:
-            j, k = branch if branch is not None else (0, 0)
-            ak, ek = (a1, exps.g1) if k == 0 else (a2, exps.g2)
-            bj, ej = (b1, exps.q1) if j == 0 else (b2, exps.q2)
-            M = v.setdefault("M", cp.Variable(3, pos=True, name="M"))[i]
-            # (39): (a_max/((1-theta1) alpha_k))^(1/e_k) <= M;
-            # (31): (M/((1-theta2) beta_j))^(1/e_j) <= neighborhood.  s1_bound <= N iff some
-            # branch (j, k) satisfies both (each min is of increasing functions).
-            cons.append(d.a_max / (1 - d.theta1) * ak ** (-1) * M ** (-ek) <= 1)
-            cons.append(M / ((1 - d.theta2) * bj * req.neighborhood**ej) <= 1)
-    scale = env.m_max / req.thrust_max  # objective in units of the thrust limit
-    if req.limit == "norm":
-        obj = cp.sum(cp.power(scale * v["t"], 2))
-    else:
-        obj = cp.sum(scale * v["t"])
-    return cp.Problem(cp.Minimize(obj), cons), v
+    """The DGP for fixed exponents (``GPFamily`` with its parameters set).  ``branch`` = (j, k)
+    picks which monomial of the min in (39) (k: alpha_k) and (31) (j: beta_j) meets the
+    neighborhood."""
+    fam = gp_family(req, env, branch)
+    fam.set(exps, req.tf)
+    return fam.problem, fam.v
 
 
 def solve_gp(exps: Exponents, req: Request, env: Envelope) -> GPResult:
@@ -540,7 +627,7 @@ class Evaluation:
     all_landed: bool
     max_landing_time: float
     min_altitude: float
-    ground_contact: int  # states with r_z < -GROUND_TOL before landing
+    ground_contact: int  # states that meet the ground before landing (crashed)
     ground_contact_strict: int  # states with r_z < 0 at some node before landing (sim flag)
     saturated: int
     nonfinite: int
@@ -663,7 +750,7 @@ def evaluate(states: np.ndarray, gains: Gains, req: Request, *, seed: int = 0,
         worst_state=states[k].copy(), worst_value=float(measure[k]),
         all_landed=bool(res.landed.all()), max_landing_time=float(lt.max()),
         min_altitude=float(res.min_altitude.min()),
-        ground_contact=int((res.min_altitude < -GROUND_TOL).sum()),
+        ground_contact=int(res.crashed.sum()),
         ground_contact_strict=int(res.ground_contact.sum()),
         saturated=int((res.time_saturated > 0).sum()), nonfinite=int(res.nonfinite.sum()),
         fuel_max=float(res.fuel.max()), fuel_mean=float(res.fuel.mean()),
@@ -887,26 +974,75 @@ def tune(req: Request, env: Envelope, *, sim: SimFn | None = None, n_mc: int = 2
                           exponent_log=[], elapsed=time.perf_counter() - t0, **base)
     # The GP's time budget tb <= tf is a design choice too: a gain set meeting a tighter
     # budget meets tf, and faster gains can have a lower simulated peak (shorter flights leave
-    # less time for post-arrival chatter), which keeps feasibility monotone in tf.
+    # less time for post-arrival chatter; and slow gains hover until the propellant is gone).
     # fast: same coarse grid (the ranking is cheap), fewer budgets, screens and refine rounds.
     fracs = (1.0, 0.6) if fast else (1.0, 0.75, 0.5)
     budgets = [req.tf * f for f in fracs if req.tf * f >= tfm]
-    cands: list[tuple[float, GPResult]] = []
     log: list[dict[str, Any]] = []
+    cands = _candidates(req, env, budgets, sim=sim, seed=seed, fast=fast, log=log)
+    tried = _full_checks(cands, req, env, sim=sim, seed=seed, fast=fast, n_mc=n_mc, log=log)
+    # A looser target must never be refused where a tighter one is met: when the budgets near
+    # tf fail, descend the absolute ladder BUDGET_LADDER below them (budgets of one grid for
+    # every tf, so a looser target searches every ladder budget a tighter one reaches).
+    # Faster gains only help where slower ones fail to land (hover until the propellant is
+    # gone); once a candidate lands everything and fails on the peak thrust alone, faster
+    # budgets only raise the peak, and the descent stops.
+    ladder = [b for b in BUDGET_LADDER if tfm <= b < min(budgets, default=req.tf)]
+    slow = _only_landing_failures(tried)
+    for b in sorted(ladder, reverse=True):
+        if not slow:
+            break
+        c = _candidates(req, env, [b], sim=sim, seed=seed, fast=True, log=log)
+        t = _full_checks(c, req, env, sim=sim, seed=seed, fast=True, n_mc=n_mc, log=log)
+        cands += c
+        tried += t
+        slow = _only_landing_failures(t)
+    if not tried:
+        return TuneResult(False, "no exponent set gives gains that land every screened state "
+                          "(with --a-max: enter the neighborhood) within the horizon", None,
+                          None, None, exponent_log=log, elapsed=time.perf_counter() - t0,
+                          **base)
+    ok = [t for t in tried if not t[4]]
+    _, gp, ev, counts, problems = ok[0] if ok else min(tried, key=lambda t: t[0])
+    base["search_counts"] = counts
+    feasible = not problems
+    return TuneResult(feasible, "; ".join(problems) if problems else "ok", gp.gains, gp, ev,
+                      exponent_log=log, elapsed=time.perf_counter() - t0,
+                      info={"gp_time_budget": gp.time_budget, "candidates_full_search":
+                            len(tried), "budgets_searched": sorted(
+                                {e["gp_time_budget"] for e in log if "gp_time_budget" in e},
+                                reverse=True)}, **base)
+
+
+def _only_landing_failures(tried: list[tuple[Any, ...]]) -> bool:
+    """No candidate passed, and none landed every state (or there was none): the gains were
+    too slow for the propellant or the horizon, so faster budgets may pass."""
+    return all(t[4] and not t[2].all_landed for t in tried)
+
+
+def _candidates(req: Request, env: Envelope, budgets: list[float], *, sim: SimFn | None,
+                seed: int, fast: bool, log: list[dict[str, Any]]
+                ) -> list[tuple[float, GPResult]]:
+    """Screened candidates (simulated peak ratio, GP result) of the exponent search at each
+    time budget, best first; the search log is appended to ``log``."""
+    cands: list[tuple[float, GPResult]] = []
     for tb in budgets:
         c, lg = search_exponents(replace(req, tf=tb), env, sim=sim, seed=seed,
                                  top=2 if fast else 4, refine_rounds=1 if fast else 3)
         cands += c
         log += [e | {"gp_time_budget": tb} for e in lg]
     cands.sort(key=lambda c: c[0])
-    if not cands:
-        return TuneResult(False, "no exponent set gives gains that land every screened state "
-                          "(with --a-max: enter the neighborhood) within the horizon", None,
-                          None, None, exponent_log=log, elapsed=time.perf_counter() - t0,
-                          **base)
-    # The screen sees extreme states and a few random ones; the full worst-case search can find
-    # worse (post-arrival chatter spikes, interior states).  Try the best few candidates with
-    # the full search and keep the first that passes, else the one with the least peak.
+    return cands
+
+
+def _full_checks(cands: list[tuple[float, GPResult]], req: Request, env: Envelope, *,
+                 sim: SimFn | None, seed: int, fast: bool, n_mc: int,
+                 log: list[dict[str, Any]]) -> list[tuple[float, GPResult, Evaluation,
+                                                          dict[str, int], list[str]]]:
+    """The screen sees extreme states and a few random ones; the full worst-case search can
+    find worse (post-arrival chatter spikes, interior states).  Try the best few candidates
+    with the full search, stopping at the first that passes: (ratio, gp, evaluation, search
+    counts, problems) per candidate tried."""
     tried: list[tuple[float, GPResult, Evaluation, dict[str, int], list[str]]] = []
     seen: set[tuple[float, ...]] = set()
     for ratio, gp in cands:
@@ -926,14 +1062,7 @@ def tune(req: Request, env: Envelope, *, sim: SimFn | None = None, n_mc: int = 2
         tried.append((peak_ratio(ev, req), gp, ev, counts, problems))
         if not problems:
             break
-    ok = [t for t in tried if not t[4]]
-    _, gp, ev, counts, problems = ok[0] if ok else min(tried, key=lambda t: t[0])
-    base["search_counts"] = counts
-    feasible = not problems
-    return TuneResult(feasible, "; ".join(problems) if problems else "ok", gp.gains, gp, ev,
-                      exponent_log=log, elapsed=time.perf_counter() - t0,
-                      info={"gp_time_budget": gp.time_budget, "candidates_full_search":
-                            len(tried)}, **base)
+    return tried
 
 
 def _problems(ev: Evaluation, req: Request) -> list[str]:
@@ -1028,7 +1157,7 @@ class CampaignCheck:
     landed_in_tf: int  # of the cases in E: landed with landing_time <= tf
     saturated: int  # of the cases in E
     peak_max: float  # N, max over cases in E (limit measure)
-    below_ground: int  # of the cases in E, r_z < -GROUND_TOL before landing
+    below_ground: int  # of the cases in E, met the ground before landing (crashed)
     below_ground_strict: int
     min_altitude: float
     max_landing_time: float
@@ -1064,7 +1193,7 @@ def check_campaign(gains: Gains, r0: np.ndarray, v0: np.ndarray, m0: np.ndarray,
               & ~env.in_keep_out(r0, v0, req.thrust_max, req.limit))
     ok_t = res.landed & (res.landing_time <= req.tf)
     sat = res.time_saturated > 0
-    below = res.min_altitude < -GROUND_TOL
+    below = res.crashed  # met the ground before landing (the simulator's contact)
     meas = limit_measure(res.peak_thrust_unsat, res.nonfinite, req.limit)
     lt = np.where(res.landed, res.landing_time, np.inf)
     return CampaignCheck(

@@ -1,6 +1,6 @@
 """Seed 000 (Mars powered descent, fixed-time multiple sliding surfaces) as a ``System``."""
 
-from lgw.tuning.system import Legacy, System, Verb
+from lgw.tuning.system import System, Verb
 
 _M = "lgw.tuning.mars"
 
@@ -16,16 +16,16 @@ SYSTEM = System(
                          "landing-time bound for a gain set"),
         "simulate": Verb(f"{_M}.cmd_simulate", "batched simulation and Monte Carlo "
                            "campaigns of the closed loop"),
-        "verify": Legacy(f"{_M}.cmd_verify", "property campaign: observed times and "
+        "verify": Verb(f"{_M}.cmd_verify", "property campaign: observed times and "
                          "neighbourhoods against the proven bounds"),
         "tune": Verb(f"{_M}.cmd_tune", "gain design for a landing time and a thrust "
                        "limit, with a certificate"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
-        "compare": Legacy(f"{_M}.cmd_compare", "the paper's Part 1 comparison on Table I "
-                          "(table, JSON, figure)"),
-        "optimal": Legacy(f"{_M}.cmd_optimal", "the lossless-convexification fuel-optimal "
-                          "baseline"),
+        "compare": Verb(f"{_M}.cmd_compare", "the paper's Part 1 comparison on Table I "
+                        "(table, JSON, figure)"),
+        "optimal": Verb(f"{_M}.cmd_optimal", "the lossless-convexification fuel-optimal "
+                        "baseline"),
         "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
                        "one step"),
     },

@@ -1,4 +1,4 @@
-"""The Hypothesis engine behind ``lgw verify lunar`` and ``lgw verify eros`` (system-neutral).
+"""The Hypothesis engine behind every ``lgw verify SYSTEM`` (``lgw.tuning.verifying``).
 
 ``run_property(strategy, check, ...)`` lets Hypothesis draw examples (batches of initial states)
 and calls ``check(example)``, which flies them, records every case it judged in the caller's

@@ -8,21 +8,21 @@ position errors |e_i(0)| <= MC_POS = 10 m, velocity errors |e_i'(0)| <= MC_VEL =
 disturbance phase in [0, 2 pi) per case; a batch is one (e0 (N, 3), ed0 (N, 3), phase (N,))
 triple so that one example is one batched simulation.
 
-The helpers return ``lgw.tuning.eros.verify.ClaimResult`` records, the rows ``lgw verify eros``
+The helpers return ``lgw.tuning.verifying.ClaimResult`` records, the rows ``lgw verify eros``
 prints.
 """
 
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
+from lgw.testing import checker
 from lgw.theory.eros import parameters as P
-from lgw.theory.eros.gains import Gains, gains_from_dict, load_gains
+from lgw.theory.eros.gains import Gains, gains_from_dict
 
 
 def log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
@@ -58,22 +58,11 @@ def state_batches(n_min: int = 1, n_max: int = 16, e_max: float = P.MC_POS,
         hnp.arrays(np.float64, (n,), elements=ph)))
 
 
-# --- property helpers: the records lgw verify eros prints ----------------------------------
+# --- property helpers: the records lgw verify eros prints -------------------------------
 
-def check_bounds(gains: Gains | str | Path | None = None, *,
-                 claims: tuple[str, ...] | None = None, **options) -> list:
-    """Run ``lgw verify eros``'s checks on a gain set (a Gains, a TOML path, or None for the
-    default) and return its ``ClaimResult`` records; ``options`` as
-    ``lgw.tuning.eros.verify.VerifyOptions`` (profile, seed, database, min_cases, examples,
-    scale)."""
-    from lgw.theory.eros.gains import default_gains
-    from lgw.tuning.eros.verify import VerifyOptions, run_verify
-    g = (gains if isinstance(gains, Gains) else default_gains() if gains is None
-         else load_gains(Path(gains)))
-    res = run_verify(g, VerifyOptions(**options))
-    return [r for r in res if claims is None or r.claim in claims]
+check_bounds = checker("eros")
 
 
-def check_tracking_within_bound(gains: Gains | str | Path | None = None, **options) -> list:
+def check_tracking_within_bound(gains=None, **options) -> list:
     """The reaching + sliding time claims alone (known and unknown disturbance)."""
     return check_bounds(gains, claims=("time-known", "time-unknown"), **options)

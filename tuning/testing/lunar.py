@@ -2,24 +2,24 @@
 
 Orbit-loop gain sets respect the hypotheses of lgw.theory.lunar.gains (K1 = k I with
 F1 = K1_zz > 0; F2 diagonal with every entry > 1/2 so f2bar > 1/2; 0 < f3 < f2bar; q > 0;
-d0e(0) = 0), as the random campaign of ``lgw.tuning.lunar.verify.random_loop_gains`` draws
-them.  Initial errors are the envelope of that campaign: height error x1(0) in [-100, 100] m,
-velocity error x2(0) in [-5, 5]^3 m/s; a batch is one (x1_0 (N,), x2_0 (N, 3)) pair so that one
+d0e(0) = 0), as ``lgw.tuning.lunar.verify.random_loop_gains`` draws them.  Initial errors are
+the default envelope of ``lgw verify lunar``: height error x1(0) in [-100, 100] m, velocity
+error x2(0) in [-5, 5]^3 m/s; a batch is one (x1_0 (N,), x2_0 (N, 3)) pair so that one
 example is one batched flight of the general system (5).
 
-The helpers return ``lgw.tuning.lunar.verify.ClaimResult`` records, the rows
+The helpers return ``lgw.tuning.verifying.ClaimResult`` records, the rows
 ``lgw verify lunar`` prints.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
-from lgw.theory.lunar.gains import Gains, LoopGains, load, make_loop
+from lgw.testing import checker
+from lgw.theory.lunar.gains import LoopGains, make_loop
 
 X1_MAX = 100.0  # m, |x1(0)|
 X2_MAX = 5.0  # m/s, |x2_i(0)|
@@ -47,24 +47,12 @@ def state_batches(n_min: int = 1, n_max: int = 8, x1_max: float = X1_MAX,
         hnp.arrays(np.float64, (n,), elements=a), hnp.arrays(np.float64, (n, 3), elements=b)))
 
 
-# --- property helpers: the records lgw verify lunar prints ---------------------------------
+# --- property helpers: the records lgw verify lunar prints -------------------------------
 
-def check_bounds(gains: Gains | LoopGains | str | Path | None = None, *,
-                 claims: tuple[str, ...] | None = None, **options) -> list:
-    """Run ``lgw verify lunar``'s checks on a gain set's orbit loop (Gains, LoopGains, a TOML
-    path with [orbit] / [attitude], or None for seed 001 Section 5's) and return its
-    ``ClaimResult`` records; ``options`` as ``lgw.tuning.lunar.verify.VerifyOptions``."""
-    from lgw.theory.lunar.gains import paper_gains
-    from lgw.tuning.lunar.verify import VerifyOptions, run_verify
-
-    g = (paper_gains() if gains is None else gains if isinstance(gains, Gains | LoopGains)
-         else load(Path(gains)))
-    loop = g.orbit if isinstance(g, Gains) else g
-    res = run_verify(loop, VerifyOptions(**options))
-    return [r for r in res if claims is None or r.claim in claims]
+check_bounds = checker("lunar")
 
 
-def check_l2_bounds(gains: Gains | LoopGains | str | Path | None = None, **options) -> list:
+def check_l2_bounds(gains=None, **options) -> list:
     """The L2-gain claims (18a), (18b), (19a), (19b) derived and (21a) alone."""
     return check_bounds(gains, claims=("(18a)", "(18b)", "(19a)", "(19b) derived", "(21a)"),
                         **options)

@@ -8,19 +8,19 @@ decades; the disturbance a_max > 0, theta1, theta2 in (0, 1).  Initial states go
 to 1e5 m and from 1e-6 m/s to 1e3 m/s with exact zeros and both signs; a batch of states is
 one (N, 3) array (hypothesis.extra.numpy) so one example is one batched simulation.
 
-The helpers return ``lgw.tuning.mars.verify.ClaimResult`` records, the rows ``lgw verify mars``
+The helpers return ``lgw.tuning.verifying.ClaimResult`` records, the rows ``lgw verify mars``
 prints.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
-from lgw.theory.mars.gains import Gains, gains_from_dict, load_gains
+from lgw.testing import checker
+from lgw.theory.mars.gains import Gains, gains_from_dict
 
 
 def log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
@@ -93,21 +93,11 @@ def state_batches(n_min: int = 1, n_max: int = 4) -> st.SearchStrategy[tuple[np.
         hnp.arrays(np.float64, (n, 3), elements=velocities)))
 
 
-# --- property helpers: the records lgw verify prints ----------------------------------------
+# --- property helpers: the records lgw verify mars prints -------------------------------
 
-def check_bounds(gains: Gains | str | Path, *, claims: tuple[str, ...] | None = None,
-                 **options) -> list:
-    """Run ``lgw verify mars``'s checks on a gain set (a Gains or a TOML path) and return its
-    ``ClaimResult`` records; ``options`` as ``lgw.tuning.mars.verify.VerifyOptions``.  A
-    [certificate] table's ``landing_time_bound`` is checked as promised (see
-    ``certificate_scale``)."""
-    from lgw.tuning.mars.verify import VerifyOptions, certificate_scale, run_verify
-    g = gains if isinstance(gains, Gains) else load_gains(Path(gains))
-    scale = {**certificate_scale(g), **dict(options.pop("scale", {}))}
-    res = run_verify(g, VerifyOptions(scale=scale, **options))
-    return [r for r in res if claims is None or r.claim in claims]
+check_bounds = checker("mars")
 
 
-def check_landing_within_bound(gains: Gains | str | Path, **options) -> list:
+def check_landing_within_bound(gains=None, **options) -> list:
     """The landing-time claim alone (T2* + T1*, or the certificate's promise)."""
     return check_bounds(gains, claims=("landing-T2+T1",), **options)

@@ -1,23 +1,26 @@
 """The pytest plugin of ``lgw.testing`` (entry point ``pytest11``: ``lgw``).
 
-A user's test marks a test with the gains file to verify and asks for the ``lgw_verify``
-fixture, which runs ``lgw verify``'s checks (the same records, the same verdicts) and returns
-a report::
+Mark a test with the gains file to verify and ask for ``lgw_claim``: the test runs once per
+claim of the system, each a pass, a skip (the claim does not apply to the file, with the
+reason) or one clean failure (what was observed against which bound, at which state and gains,
+and the ``lgw verify`` command that reproduces it; no traceback)::
 
-    @pytest.mark.lgw_gains("gains.toml", system="mars", profile="ci")
-    def test_gains(lgw_verify):
-        lgw_verify.assert_holds()
+    @pytest.mark.lgw_gains("gains.toml", system="mars")
+    def test_gains(lgw_claim):
+        lgw_claim.assert_holds()
 
-The path is relative to the test file.  Options of the marker: system ("mars", "lunar" or
-"eros": lgw.testing.SYSTEMS), profile ("ci" | "thorough"), seed (default: see below; None for
-random), min_cases, examples, scale (a dict claim -> factor on its bound: a self-test) and
-database (a
-folder for Hypothesis' example database; default the pytest cache folder
-``.pytest_cache/lgw-examples``, kept between CI runs by caching that folder).  A database makes
-the run random (Hypothesis uses none in a seeded run): without ``seed=`` the marker runs random
-examples with the cached database; with ``seed=S`` (and no ``database=``) a derandomised run
-without one.  The command-line
-option ``--lgw-profile`` overrides the marker's profile.
+or ask for ``lgw_verify`` for the whole file in one test (``.results``, ``.ok``,
+``.explain()``, ``.assert_holds()``: fails on a violated or inconclusive claim, skips when no
+claim applies).  The checks run once per file and options, whatever the number of tests.
+
+The path is relative to the test file.  Marker options: ``system`` ("mars", "lunar" or
+"eros"), and any option of ``lgw verify SYSTEM`` by its Python name (``profile``, ``seed``,
+``examples``, ``min_cases``, ``max_excluded``, ``domain``, ``envelope``, ``claim``, ``scale``
+as a dict claim -> factor, ``database``, the system's own settings).  ``--lgw-profile``
+overrides the marker's profile.  Hypothesis' example database defaults to the pytest cache
+(``.pytest_cache/d/lgw-examples``, kept between CI runs by caching that folder): a database
+makes the run random (Hypothesis uses none in a seeded run), so give ``seed=S`` (and no
+``database=``) for a derandomised run without one.
 """
 
 from __future__ import annotations
@@ -27,6 +30,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+
+_CACHE = pytest.StashKey[dict]()
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -38,12 +43,50 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line(
         "markers", "lgw_gains(path, system='mars', **options): verify a gains file with "
-                   "the lgw_verify fixture")
+                   "the lgw_claim (one test per claim) or lgw_verify fixture")
+    config.stash[_CACHE] = {}
+
+
+def _claims(system: str) -> list[str]:
+    from lgw.tuning.system import get_system
+
+    return list(get_system(system).verb("verify").load().CLAIMS)
+
+
+def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
+    if "lgw_claim" not in metafunc.fixturenames:
+        return
+    mark = metafunc.definition.get_closest_marker("lgw_gains")
+    if mark is None:
+        return
+    system = mark.kwargs.get("system", "mars")
+    wanted = mark.kwargs.get("claim")
+    names = _claims(system)
+    if wanted:
+        wanted = [wanted] if isinstance(wanted, str) else list(wanted)
+        names = [c for c in names if c in wanted]
+    metafunc.parametrize("lgw_claim", names, indirect=True, ids=names)
+
+
+@dataclass
+class ClaimCheck:
+    """One claim's result for the marked gains file."""
+
+    path: Path
+    system: str
+    result: Any  # lgw.tuning.verifying.ClaimResult
+
+    def assert_holds(self) -> None:
+        r = self.result
+        if r.verdict == "not-applicable":
+            pytest.skip(f"lgw verify {self.system} {r.claim}: {r.why}")
+        if r.verdict != "holds":
+            pytest.fail(f"lgw verify {self.system} {self.path}:\n{r.explain()}", pytrace=False)
 
 
 @dataclass
 class VerifyReport:
-    """The records of one verification and how to read them."""
+    """The records of one verification of a gains file and how to read them."""
 
     path: Path
     system: str
@@ -51,7 +94,7 @@ class VerifyReport:
 
     @property
     def ok(self) -> bool:
-        return all(r.verdict == "holds" for r in self.results)
+        return all(r.verdict in ("holds", "not-applicable") for r in self.results)
 
     def by_claim(self) -> dict[str, Any]:
         return {r.claim: r for r in self.results}
@@ -59,44 +102,73 @@ class VerifyReport:
     def explain(self) -> str:
         lines = [f"lgw verify {self.system} {self.path}:"]
         for r in self.results:
-            lines.append(f"  {r.claim} {r.equation}: {r.verdict} ({r.n_checked} checked, "
-                         f"{r.n_adaptive} by the fallback integrator, {r.n_excluded} "
-                         "excluded)"
-                         + (f" - {r.why}" if r.why else ""))
-            if r.witness:
-                lines.append(f"    shrunk witness: {r.witness}")
-            if r.reproduction:
-                lines.append("    reproduce:\n      " + r.reproduction.replace("\n", "\n      "))
+            if r.verdict == "holds":
+                lines.append(f"  {r.claim} {r.equation}: holds ({r.informative} informative "
+                             f"of {r.total} cases, worst margin {r.margin:.4g})")
+            elif r.verdict == "not-applicable":
+                lines.append(f"  {r.claim} {r.equation}: {r.why}")
+            else:
+                lines.append("  " + r.explain().replace("\n", "\n  "))
         return "\n".join(lines)
 
     def assert_holds(self) -> None:
+        """Fail (one clean message) on a violated or inconclusive claim; skip when no claim
+        applies to the file."""
         if not self.ok:
-            raise AssertionError(self.explain())
+            pytest.fail(self.explain(), pytrace=False)
+        if all(r.verdict == "not-applicable" for r in self.results):
+            pytest.skip(self.explain())
 
 
-@pytest.fixture
-def lgw_verify(request: pytest.FixtureRequest) -> VerifyReport:
-    """Verify the gains file of the test's ``lgw_gains`` marker; returns a VerifyReport."""
-    mark = request.node.get_closest_marker("lgw_gains")
+def _run(request: pytest.FixtureRequest) -> tuple[Path, str, list]:
+    node = getattr(request, "node", None)
+    mark = node.get_closest_marker("lgw_gains") if node is not None else None
     if mark is None or not mark.args:
-        raise pytest.UsageError("lgw_verify needs @pytest.mark.lgw_gains(path, ...)")
+        raise pytest.UsageError("lgw_verify / lgw_claim need @pytest.mark.lgw_gains(path, ...)")
     opts = dict(mark.kwargs)
     system = opts.pop("system", "mars")
-    from lgw.testing import SYSTEMS
+    from lgw import SYSTEMS
 
     if system not in SYSTEMS:
-        raise pytest.UsageError(f"lgw_gains: system {system!r} is not available "
-                                f"({', '.join(SYSTEMS)})")
+        raise pytest.UsageError(f"lgw_gains: system {system!r} is not one of "
+                                f"{', '.join(SYSTEMS)}")
     path = Path(mark.args[0])
     if not path.is_absolute():
-        path = Path(request.node.fspath).parent / path
+        path = Path(node.path).parent / path
     cli_profile = request.config.getoption("--lgw-profile")
     if cli_profile:
         opts["profile"] = cli_profile
     cache = getattr(request.config, "cache", None)  # None under -p no:cacheprovider
     if "database" not in opts and "seed" not in opts and cache is not None:
         opts["database"] = Path(cache.mkdir("lgw-examples"))
-    import importlib
+    key = (str(path), system, repr(sorted(opts.items(), key=lambda kv: kv[0])))
+    store = request.config.stash[_CACHE]
+    if key not in store:
+        from lgw.theory.errors import ParameterError
+        from lgw.tuning.verifying import run_checks
 
-    check_bounds = importlib.import_module(f"lgw.testing.{system}").check_bounds
-    return VerifyReport(path, system, check_bounds(path, **opts))
+        try:
+            store[key] = run_checks(system, path, **opts)
+        except ParameterError as e:  # a bad gains file or option: one line, no traceback
+            store[key] = e
+    res = store[key]
+    if isinstance(res, Exception):
+        pytest.fail(f"lgw verify {system} {path}: error: {res}", pytrace=False)
+    return path, system, res
+
+
+@pytest.fixture
+def lgw_verify(request: pytest.FixtureRequest) -> VerifyReport:
+    """Verify the gains file of the test's ``lgw_gains`` marker; returns a VerifyReport."""
+    return VerifyReport(*_run(request))
+
+
+@pytest.fixture
+def lgw_claim(request: pytest.FixtureRequest) -> ClaimCheck:
+    """One claim (the test is parametrized over the system's claims) of the marked file."""
+    path, system, results = _run(request)
+    name = getattr(request, "param", None)
+    by = {r.claim: r for r in results}
+    if name not in by:
+        raise pytest.UsageError(f"lgw_claim: claim {name!r} was not checked")
+    return ClaimCheck(path, system, by[name])
