@@ -53,6 +53,10 @@ RUNS = {
                           0, None, (SLOW,))],
     ("compare", "mars"): [(["--law", "bounded", "--dist-amplitude", "1", "--n", "20"], 0,
                            "compare.json", (SLOW,))],
+    # the session's warm-up (tests/conftest.py) built every kernel: these only load them
+    ("warmup", "mars"): [([], 0, None, ())],
+    ("warmup", "lunar"): [([], 0, None, ())],
+    ("warmup", "eros"): [([], 0, None, ())],
 }
 
 

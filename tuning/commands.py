@@ -246,8 +246,33 @@ class VerbGroup(click.Group):
 
 
 def verb_groups() -> list[VerbGroup]:
-    return [VerbGroup(verb, help=text, context_settings={"help_option_names": ["-h", "--help"]})
+    return [VerbGroup(verb, context_settings={"help_option_names": ["-h", "--help"]},
+                      **{"help": text, **_every_system(verb)})
             for verb, text in VERBS.items()]
+
+
+def _every_system(verb: str) -> dict[str, Any]:
+    """For a verb of ``EVERY_SYSTEM_VERBS``: ``lgw VERB`` without SYSTEM runs it for every
+    system in turn, with its default options; the exit code is the largest."""
+    from lgw.tuning.system import EVERY_SYSTEM_VERBS
+
+    if verb not in EVERY_SYSTEM_VERBS:
+        return {}
+
+    def every_system() -> int:
+        from lgw.tuning.system import system_names
+
+        ctx = click.get_current_context()
+        if ctx.invoked_subcommand is not None:
+            return 0
+        rc = 0
+        for name in system_names():
+            rc = max(rc, ctx.invoke(make_command(get_system(name), verb)) or 0)
+        return rc
+
+    return {"invoke_without_command": True, "callback": every_system,
+            "subcommand_metavar": "[SYSTEM] [OPTIONS]",
+            "help": f"{VERBS[verb]} Without SYSTEM: every system in turn."}
 
 
 def first_line(text: str | None) -> str:

@@ -46,6 +46,8 @@ VERBS = {
     "optimal": "Offline fuel-optimal baseline (lossless convexification).",
     "warmup": "Build and cache every compiled kernel of a system in one step.",
 }
+# verbs that, given no SYSTEM, run for every system in turn (lgw.tuning.commands)
+EVERY_SYSTEM_VERBS = ("warmup",)
 
 
 @dataclass
@@ -106,7 +108,8 @@ class System:
     """One paper's contribution.  ``verbs``: verb -> ``Verb`` or ``NotApplicable``.
     ``gains``: import path of a module with ``load(path) -> Gains`` and ``default() ->
     Gains``; ``claims``: import path of ``all_claims(gains)``; ``interop``: of the
-    python-control blocks (``plant()``, ``law(gains)``)."""
+    python-control blocks (``plant()``, ``law(gains)``); ``kernels``: of
+    ``warmup_kernels() -> [(name, build)]``, the system's compiled kernels (``lgw warmup``)."""
 
     name: str
     seed: str
@@ -116,6 +119,7 @@ class System:
     verbs: Mapping[str, Verb | NotApplicable]
     claims: str = ""
     interop: str = ""
+    kernels: str = ""
 
     def verb(self, verb: str) -> Verb:
         v = self.verbs.get(verb)

@@ -276,7 +276,11 @@ def _checked(e0, ed0) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _per_case(name: str, v, n: int, default: float, unit: str) -> np.ndarray:
-    out = np.full(n, float(default)) if v is None else np.asarray(v, float).reshape(-1)
+    if v is None:
+        v = default
+    out = np.asarray(v, float).reshape(-1)
+    if out.shape == (1,):  # one value for every case
+        out = np.full(n, out[0])
     if out.shape != (n,) or not np.all(np.isfinite(out)):
         raise ParameterError(name, out.shape, f"must be {n} finite numbers ({unit})")
     return out
@@ -297,6 +301,7 @@ def simulate_descent(e0, ed0, g: Gains, opts: DescentOptions, *, case_phase=None
     opts.t0; case_phase (rad) of the sinusoid, srp (m/s^2, default opts.env.srp) and the nav
     ids (the navigation numbers' case counter, default 0..n-1) per case."""
     from lgw.sim import executors, integrate
+    from lgw.sim.kernel_cache import CompileNotice
     from lgw.sim.options import IntegrationOptions
 
     e0, ed0 = _checked(e0, ed0)
@@ -340,13 +345,13 @@ def simulate_descent(e0, ed0, g: Gains, opts: DescentOptions, *, case_phase=None
     O = integrate.integration_tuple(io, K * opts.dt, sample=(opts.dt, opts.n_sub))  # noqa: N806
     gout = integrate.generic_outputs(n, DK.NY)
     G = tuple(gout[k] for k in integrate.GENERIC_FIELDS)  # noqa: N806
-    C = tuple(np.ascontiguousarray(a) for a in (pos0, vel0, np.full(n, float(pr.mass)), cph,
-                                                 ids, srp_c))
-    mod = DK.kernel_module()
-    kfn = mod.kernel_parallel if parallel else mod.kernel_serial
+    C = (pos0, vel0, np.full(n, float(pr.mass)), cph, ids, srp_c)
+    C, Q = integrate.kernel_args(C), integrate.kernel_args(Q)  # noqa: N806
+    kernel = DK.kernel_module().kernel
     empty = np.empty((1, 1, 1))
-    executors.run_local(lambda sl: integrate.run_chunk(kfn, sl, C, Q, R, O, G, empty, empty),
-                        n, chunk)
+    with CompileNotice(kernel, "the eros descent kernel", "~20-40 s"):
+        executors.run_local(lambda sl: integrate.run_chunk(kernel, sl, C, Q, R, O, G, empty,
+                                                           empty, parallel), n, chunk)
     return _result(R, gout, opts, g, K, KR)
 
 

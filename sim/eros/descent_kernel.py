@@ -433,14 +433,14 @@ def hooks_source() -> str:
     """The hooks as written into the kernel module: the tracking kernel's shared helpers
     (clearance bound, one axis's control and surface), this module's helpers and hooks."""
     from lgw.sim.eros import kernel as KN
+    from lgw.sim.integrate import hook_jit
 
     shared = (KN._inside, KN._clearance, KN._u_axis, KN._s_axis)
     src = [inspect.getsource(f) + "\n" for f in shared + HELPERS + HOOKS]
     inline = (KN._u_axis, KN._s_axis)
     jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True"
             + (", inline='always')" if f in inline else ")") for f in shared + HELPERS]
-           + [f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', inline='always')"
-              for f in HOOKS])
+           + hook_jit(f.__name__ for f in HOOKS))
     return "\n".join([*(f"{k} = {v!r}" for k, v in SLOTS.items()), "", *src, *jit])
 
 
@@ -448,25 +448,30 @@ HEADER_IMPORTS = ("from lgw.sim.eros.polygrav import poly_field",
                   "from lgw.sim.eros.navnoise import nav_normal")
 
 
-def _key_sources() -> list[str]:
-    import lgw
+def _deps() -> list[str]:
+    """The sources of the modules the generated kernel imports compiled code from (numba does
+    not check them), as first read in this process (lgw.sim.kernel_cache)."""
     from lgw.sim import codegen, integrate, kernel_cache
     from lgw.sim.eros import descent_kernel, kernel, navnoise, polygrav
-    from lgw.theory.eros import gravity, laws
-    return [lgw.__version__, *kernel_cache.source_of(codegen, integrate, kernel_cache, kernel,
-                                                     descent_kernel, polygrav, navnoise, laws,
-                                                     gravity)]
+    return kernel_cache.imported_sources(codegen, integrate, kernel, descent_kernel, polygrav,
+                                         navnoise)
+
+
+def kernel_text() -> str:
+    """The full text of the generated kernel module (what the cache keys)."""
+    from lgw.sim import integrate
+    from lgw.sim.eros import kernel as KN
+    return integrate.kernel_module_source(KN.law_header() + "\n" + "\n".join(HEADER_IMPORTS),
+                                          hooks_source(), {"NY": NY, "NX": NX, "NS": NS})
 
 
 @functools.cache
 def kernel_module():
-    """The generated kernel module of the descent, from the disk cache."""
-    from lgw.sim import integrate, kernel_cache
-    from lgw.sim.eros import kernel as KN
-    stem = f"eros_descent_{kernel_cache.key(_key_sources())}"
-    return kernel_cache.load_module(stem, lambda: integrate.kernel_module_source(
-        KN.law_header() + "\n" + "\n".join(HEADER_IMPORTS), hooks_source(),
-        {"NY": NY, "NX": NX, "NS": NS}))
+    """The generated kernel module of the descent (``kernel`` and the generated laws), from
+    the disk cache, keyed by its text and found by its inputs
+    (``lgw.sim.kernel_cache.generated_module``)."""
+    from lgw.sim import kernel_cache
+    return kernel_cache.generated_module("eros_descent", kernel_text, _deps())
 
 
 def shared(values: dict) -> tuple:
@@ -486,3 +491,6 @@ def shared(values: dict) -> tuple:
     if missing or extra:
         raise ValueError(f"Q: missing {sorted(missing)}, unknown {sorted(extra)}")
     return tuple(v[n] for n in Q_NAMES)
+
+
+_deps()  # read the sources the kernel imports now, at this module's import (see _deps)

@@ -350,31 +350,36 @@ SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY":
 
 def hooks_source() -> str:
     """The hooks as written into a kernel module, with their slots."""
+    from lgw.sim.integrate import hook_jit
     src = [inspect.getsource(f) + "\n" for f in HELPERS + HOOKS]
     jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True"
             + (", inline='always')" if f in INLINE else ")") for f in HELPERS]
-           + [f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', inline='always')"
-              for f in HOOKS])
+           + hook_jit(f.__name__ for f in HOOKS))
     return "\n".join([*(f"{k} = {v!r}" for k, v in SLOTS.items()), "", *src, *jit])
 
 
-def _key_sources() -> list[str]:
-    import lgw
+def _deps() -> list[str]:
+    """The sources of the modules the generated kernel imports compiled code from (numba does
+    not check them), as first read in this process (lgw.sim.kernel_cache)."""
     from lgw.sim import codegen, integrate, kernel_cache
     from lgw.sim.eros import kernel, polygrav
-    from lgw.theory.eros import gravity, laws
-    return [lgw.__version__, *kernel_cache.source_of(codegen, integrate, kernel_cache, kernel,
-                                                     laws, gravity, polygrav)]
+    return kernel_cache.imported_sources(codegen, integrate, kernel, polygrav)
+
+
+def kernel_text() -> str:
+    """The full text of the generated kernel module (what the cache keys)."""
+    from lgw.sim import integrate
+    return integrate.kernel_module_source(law_header(), hooks_source(),
+                                          {"NY": NY, "NX": NX, "NS": NS})
 
 
 @functools.cache
 def kernel_module():
     """The generated kernel module of seed 002's sampled-data loop (all six variants), from
-    the disk cache."""
-    from lgw.sim import integrate, kernel_cache
-    stem = f"eros_kernel_{kernel_cache.key(_key_sources())}"
-    return kernel_cache.load_module(stem, lambda: integrate.kernel_module_source(
-        law_header(), hooks_source(), {"NY": NY, "NX": NX, "NS": NS}))
+    the disk cache, keyed by its text and found by its inputs
+    (``lgw.sim.kernel_cache.generated_module``)."""
+    from lgw.sim import kernel_cache
+    return kernel_cache.generated_module("eros_kernel", kernel_text, _deps())
 
 
 @functools.cache
@@ -387,3 +392,6 @@ def body_arrays() -> tuple[np.ndarray, ...]:
     lo, hi, a, n, cen, rad = _body()
     return tuple(np.ascontiguousarray(x) for x in (lo, hi, P.vertices, P.faces.astype(np.int64),
                                                    a, n, cen, rad))
+
+
+_deps()  # read the sources the kernel imports now, at this module's import (see _deps)

@@ -105,6 +105,7 @@ def _kernel_inputs(ctx: Context, X0: np.ndarray,
     """(C, Q) of the kernel (lgw.sim.lunar.kernel) for the context and initial states;
     ``failures`` = (T_a (N,), t_fail (N,) s) per case (a Monte Carlo campaign), else the run's
     ``Ta`` and ``t_fail`` for every case."""
+    from lgw.sim import integrate
     from lgw.sim.lunar.outcomes import AFTER_FAILURE_S
 
     o = ctx.opts
@@ -134,7 +135,7 @@ def _kernel_inputs(ctx: Context, X0: np.ndarray,
          FAILURE_CODE[o.failure], float(o.dist_amp), float(o.cmd_wn),
          POINTING_CODE[o.thrust_pointing], np.ascontiguousarray(ctx.J[:, 0], dtype=float),
          float(o.m_dry), float(P.QUAT_NORM_TOL))
-    return C, Q
+    return integrate.kernel_args(C), integrate.kernel_args(Q)
 
 
 SAT_CODE = {"commanded": 0, "nominal": 1}
@@ -175,10 +176,9 @@ def simulate(ctx: Context, X0: np.ndarray, *, method: str = "rk4", record: bool 
     rec_y = np.full((*shape, K.NY), np.nan)
     rec_x = np.full((*shape, K.NX), np.nan)
     mod = K.kernel_module()
-    fn = mod.kernel_parallel if parallel else mod.kernel_serial
-    with CompileNotice(fn, "the lunar kernel", "~1-2 min"):
-        executors.run_local(lambda sl: integrate.run_chunk(fn, sl, C, Q, R, O, G, rec_y, rec_x),
-                            n, chunk)
+    with CompileNotice(mod.kernel, "the lunar kernel", "~20-40 s"):
+        executors.run_local(lambda sl: integrate.run_chunk(mod.kernel, sl, C, Q, R, O, G, rec_y,
+                                                           rec_x, parallel), n, chunk)
     res = dict(zip(K.RESULT_FIELDS, R, strict=True))
     res.update(zip(integrate.GENERIC_FIELDS, G, strict=True))
     code = res["outcome"].copy()
@@ -278,3 +278,17 @@ def events(res: BatchResult, key: str = "orbit_saturated") -> list[list[tuple[st
             e.insert(0, ("enter", float(res.t[0])))
         ev.append(sorted(e, key=lambda x: x[1]))
     return ev
+
+
+def warmup_kernels() -> list[tuple[str, object]]:
+    """The compiled kernels of seed 001, as (name, build): the closed loop's kernel
+    (``lgw.sim.lunar.kernel``), built by flying the Section 5 case for 0.1 s through
+    ``simulate`` (the argument types of every run)."""
+    from lgw.sim.lunar.closed_loop import RunOptions
+    from lgw.sim.lunar.scenario import section5_case
+
+    def build() -> None:
+        ctx, X0 = section5_case(opts=RunOptions(t_end=0.1))
+        simulate(ctx, X0, parallel=False)
+
+    return [("lunar", build)]

@@ -635,9 +635,9 @@ CONSTS = {"BLOW_ACC": BLOWUP_ACCEL, "R_MOON": P.R_MOON, "MU_MOON": P.MU_MOON,
 
 def hooks_source() -> str:
     """The hooks as written into a kernel module, with their slots and constants."""
+    from lgw.sim.integrate import hook_jit
     src = [inspect.getsource(f) + "\n" for f in HOOKS]
-    jit = [f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', inline='always')"
-           for f in HOOKS if f is not _node_metrics]
+    jit = hook_jit(f.__name__ for f in HOOKS if f is not _node_metrics)
     return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
                       "from lgw.sim.lunar.kernel import _cross, _dcm, _mv, _qmul, _spline", "",
                       *(f"{k} = {v!r}" for k, v in {**SLOTS, **CONSTS}.items()), "",
@@ -663,11 +663,11 @@ def kernel_text() -> str:
 
 @functools.cache
 def kernel_module():
-    """The generated kernel module of seed 001's closed loop (``kernel_parallel``,
-    ``kernel_serial``, ``case_fn`` and the generated law), from the disk cache, keyed by its
-    text (``lgw.sim.kernel_cache.module_for``)."""
+    """The generated kernel module of seed 001's closed loop (``kernel`` and the generated
+    law), from the disk cache, keyed by its text and found by its inputs
+    (``lgw.sim.kernel_cache.generated_module``)."""
     from lgw.sim import kernel_cache
-    return kernel_cache.module_for("lunar_kernel", kernel_text(), _deps())
+    return kernel_cache.generated_module("lunar_kernel", kernel_text, _deps())
 
 
 _deps()  # read the sources the kernel imports now, at this module's import (see _deps)

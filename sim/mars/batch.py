@@ -7,8 +7,9 @@ The plant is seed 000 (10)-(14) (see ``lgw.sim.mars.plant``), the guidance any l
 Integration is classical RK4 with an explicit step ``dt`` (the default), or, with
 method="dopri5", the adaptive Dormand-Prince 5(4) pair with scipy RK45's error control (the
 method of the per-case solve_ivp loop a user would write, compiled), compiled with numba and
-run in parallel over cases (``numba.prange``); each case stops when it lands (or at t_max), so
-cases do not wait for each other and results do not depend on how cases are batched or chunked.
+run in parallel over cases (threads, ``lgw.sim.integrate.run_chunk``); each case stops when it
+lands (or at t_max), so cases do not wait for each other and results do not depend on how cases
+are batched or chunked.
 
 dopri5 is for landing statistics (landed, landing time and state, fuel, min altitude, ground
 contact): the closed loop is smooth between the arrivals of s1, s2 at 0, and the error
@@ -375,7 +376,7 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
       case at landing, "t_max" keeps integrating (to observe chattering / s1, s2 after landing).
     record=True adds ``trajectory`` = {t (S,), r (N,S,3), v (N,S,3), m (N,S), F (N,S,3)}, NaN
     after a case stopped.  progress=True shows a rich progress bar over chunks of ``chunk``.
-    parallel=False runs the cases on one thread (numba prange otherwise).
+    parallel=False runs the cases on one thread (threads over pieces of a chunk otherwise).
     m_dry: dry mass (kg, default lgw.theory.mars.parameters.M_DRY = 1505), > 0 and < every m0;
       a case whose mass reaches it is ``fuel_exhausted`` (not landed if before landing) and,
       with stop="landing", ends there (see the module docstring for stop="t_max").
@@ -455,6 +456,7 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
          float(stopping.m_dry),
          BLOWUP_ACCEL if stopping.blowup_accel is None else float(stopping.blowup_accel))
 
+    C, Q = integrate.kernel_args(C), integrate.kernel_args(Q)  # noqa: N806
     out = {k: np.empty((n, 3)) for k in VECTOR_FIELDS}
     out.update({k: np.empty(n) for k in ("landing_time", "fuel", "time_saturated",
                                          "min_altitude", "contact_time")})
@@ -469,13 +471,11 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
     rec_y = np.full(shape_rec + (mars_kernel.NY,), np.nan)
     rec_x = np.full(shape_rec + (mars_kernel.NX,), np.nan)
 
-    mod = mars_kernel.kernel_module(law)
-    kernel = mod.kernel_parallel if parallel else mod.kernel_serial
-    notice = CompileNotice(kernel, f"the mars/{law} kernel{'' if parallel else ' (serial)'}",
-                           expected="~30-60 s")
+    kernel = mars_kernel.kernel_module(law).kernel
+    notice = CompileNotice(kernel, f"the mars/{law} kernel", expected="~10-20 s")
 
     def run(sl: slice) -> None:
-        integrate.run_chunk(kernel, sl, C, Q, R, O, G, rec_y, rec_x)
+        integrate.run_chunk(kernel, sl, C, Q, R, O, G, rec_y, rec_x, parallel)
 
     with notice:
         executors.run_local(run, n, chunk, progress=progress)
@@ -513,3 +513,18 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
 
 def result_fields() -> tuple[str, ...]:
     return tuple(f.name for f in fields(BatchResult))
+
+
+def warmup_kernels() -> list[tuple[str, Any]]:
+    """The compiled kernels of seed 000, as (name, build): one per registered law (the
+    integrator with the law inlined, ``lgw.sim.mars.kernel``), each built by flying one
+    Table I case for 0.1 s through ``simulate_batch`` (the argument types of every run)."""
+    from lgw.sim.mars.laws import LAWS
+    from lgw.theory.mars.gains import default_gains
+    from lgw.theory.mars.parameters import M0, R0, V0
+
+    def build(law: str) -> None:
+        simulate_batch(R0[None], V0[None], [M0], default_gains(), law=law, t_max=0.1,
+                       dt=0.05, parallel=False)
+
+    return [(f"mars/{law}", lambda law=law: build(law)) for law in LAWS]

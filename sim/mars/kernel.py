@@ -1,9 +1,12 @@
 """Seed 000's client of the generic integrator (``lgw.sim.integrate``): plant, events, metrics.
 
 The hooks below are templates in the sense of ``lgw.sim.integrate``: plain Python copied into
-the generated kernel module of one law (``kernel_for``), where ``law`` is that law's generated
-code (``lgw.sim.mars.laws.law_module_source``) and the integrator's ``case`` / ``kernel`` call
-them.  What they compute is documented in ``lgw.sim.mars.batch``.
+generated modules, where ``law`` is a law's generated code (``lgw.sim.mars.laws.law_source``)
+and the integrator's ``kernel`` calls them.  Each law has a kernel module of its own (the law is
+inlined into the vector field: passed in as a function, or picked by a switch in one kernel
+for every law, it ran 25-60 % slower, docs/sim.md); the hooks run once per case are compiled
+once in a shared module (``hooks_module``) that every law's kernel imports.  What they
+compute is documented in ``lgw.sim.mars.batch``.
 
 State y = [r (3), v (3), m] (seed 000 (10)-(14)); auxiliary outputs X = [F (3) after the
 thrust limit, F (3) before it, s2 (3) of (21), the law's acceleration a (3), stage peaks and the
@@ -554,22 +557,28 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
 HOOKS = (sys_init, sys_rhs, _sat_margin, _arrival, _impact, _ground, sys_start, sys_step,
          sys_finish)
 COMPILED_APART = (_arrival, _impact, _ground)  # called, not inlined: "<name>_fn"
+# the hooks compiled into each law's kernel module (the vector field calls the law; it and the
+# step hook are inlined, lgw.sim.integrate.INLINED_HOOKS, with the step's helper _sat_margin);
+# the others do not depend on the law and live in one shared module (``hooks_module``)
+KERNEL_HOOKS = (sys_rhs, _sat_margin, sys_step)
 SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "ZMIN": ZMIN,
          "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND, "BLOWN": BLOWN,
          "PKS": PKS, "PKUS": PKUS, "PKA": PKA, "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN,
          "CONT": CONT, "OPEN": OPEN, "XT": XT, "XR": XR, "XV": XV, "XM": XM, "BELOW": BELOW}
 
 
-def hooks_source() -> str:
-    """The hooks as written into a kernel module, with the tracker slots they use."""
+def hooks_source(hooks=HOOKS, cache: bool = False) -> str:
+    """``hooks`` as written into a generated module, with the tracker slots they use."""
+    from lgw.sim.integrate import hook_jit
     slots = "\n".join(f"{k} = {v}" for k, v in SLOTS.items())
-    return "\n".join(["from lgw.sim.integrate import BISECT_ITERS, _herm_first_under",
+    opts = ", cache=True" if cache else ""
+    return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
                       "from lgw.sim.mars.kernel import _drag, _drag_fac", "", slots, "",
-                      *(inspect.getsource(f) + "\n" for f in HOOKS),
-                      *(f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy')"
-                        for f in COMPILED_APART),
-                      *(f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', "
-                        "inline='always')" for f in HOOKS if f not in COMPILED_APART)])
+                      *(inspect.getsource(f) + "\n" for f in hooks),
+                      *(f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy'{opts})"
+                        for f in hooks if f in COMPILED_APART),
+                      *hook_jit((f.__name__ for f in hooks if f not in COMPILED_APART), cache,
+                                inline=("_sat_margin",))])
 
 
 # --- assembly -------------------------------------------------------------------------------
@@ -587,12 +596,35 @@ def _prefix(kind: str, name: str) -> str:
     return f"mars_{kind}_{slug}"
 
 
+SIZES = {"NY": NY, "NX": NX, "NS": NS}
+
+
+def hooks_text() -> str:
+    """The full text of the generated module of the hooks that do not call the law."""
+    from lgw.sim import integrate
+    shared = tuple(f for f in HOOKS if f not in KERNEL_HOOKS)
+    return integrate.hooks_module_source(hooks_source(shared, cache=True), SIZES)
+
+
+@functools.cache
+def hooks_module():
+    """The generated module of the law-independent hooks (compiled once, numba-cached), which
+    every law's kernel module imports."""
+    from lgw.sim import kernel_cache
+    return kernel_cache.generated_module("mars_hooks", hooks_text, _deps())
+
+
 def kernel_text(spec) -> str:
-    """The full text of the generated kernel module of law ``spec`` (what the cache keys)."""
+    """The full text of the generated kernel module of law ``spec`` (what the cache keys): the
+    law's generated code, the shared hooks imported from ``hooks_module``, the inlined hooks
+    (``KERNEL_HOOKS``), and the integrator."""
     from lgw.sim import integrate
     from lgw.sim.mars.laws import law_source
-    return integrate.kernel_module_source(law_source(spec, True), hooks_source(),
-                                          {"NY": NY, "NX": NX, "NS": NS})
+    shared = [f.__name__ + ("_fn" if f in COMPILED_APART else "") for f in HOOKS
+              if f not in KERNEL_HOOKS]
+    imports = f"from {hooks_module().__name__} import {', '.join(shared)}"
+    return integrate.kernel_module_source(law_source(spec, True),
+                                          imports + "\n" + hooks_source(KERNEL_HOOKS), SIZES)
 
 
 def law_text(spec) -> str:
@@ -605,18 +637,23 @@ def law_text(spec) -> str:
 @functools.cache
 def _kernel_module(spec):
     from lgw.sim import kernel_cache
-    return kernel_cache.module_for(_prefix("kernel", spec.name), kernel_text(spec), _deps())
+    from lgw.sim.mars.laws import law_key_parts
+    hooks_module()  # imported by the kernel module's text
+    return kernel_cache.generated_module(_prefix("kernel", spec.name), lambda: kernel_text(spec),
+                                         _deps(), law_key_parts(spec, True))
 
 
 @functools.cache
 def _law_module(spec):
     from lgw.sim import kernel_cache
-    return kernel_cache.module_for(_prefix("law", spec.name), law_text(spec), _deps())
+    from lgw.sim.mars.laws import law_key_parts
+    return kernel_cache.generated_module(_prefix("law", spec.name), lambda: law_text(spec),
+                                         _deps(), law_key_parts(spec, False))
 
 
 def kernel_module(name: str):
-    """The generated kernel module of law ``name`` (``kernel_parallel``, ``kernel_serial``,
-    ``case_fn``, ``law``), from the disk cache (written on first use)."""
+    """The generated kernel module of law ``name`` (``kernel``, ``law``), from the disk cache
+    (written on first use)."""
     from lgw.sim.mars.laws import get_law
     return _kernel_module(get_law(name))
 

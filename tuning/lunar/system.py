@@ -11,6 +11,7 @@ SYSTEM = System(
     summary="lunar descent (adaptive backstepping)",
     gains=f"{_M}.gainset", claims="lgw.theory.lunar.claims:all_claims",
     interop="lgw.sim.lunar.interop",
+    kernels="lgw.sim.lunar.batch:warmup_kernels",
     verbs={
         "bounds": Verb(f"{_M}.cmd_bounds", "the (18) constants beside the true filter L2 "
                          "gains, and (19)-(21) for a case"),
@@ -25,6 +26,7 @@ SYSTEM = System(
         "compare": Verb(f"{_M}.cmd_compare", "Section 5 with and without failure and "
                           "saturation, ideal against coupled pointing, the filter swept"),
         "optimal": NotApplicable("pending"),
-        "warmup": NotApplicable("pending"),
+        "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
+                       "one step"),
     },
 )
