@@ -1141,7 +1141,8 @@ class VerifyJob(Job):
             styles.append({"holds": None, "violated": "red", "not-applicable": "dim"}.get(
                 r.verdict, "yellow"))
         result_table(con, self._title(), cols, rows, styles=styles)
-        if self.witness is None:
+        if self.witness is None and any(r.check is None and r.verdict != "not-applicable"
+                                        for r in results):  # a campaign flew the envelope
             p(f"envelope: {self.envelope.name}: {self.envelope.describe()}")
         p(f"margin = (bound - observed)/bound, < 0 violates; holds needs >= {self.min_cases} "
           f"informative cases (a case that can violate the claim) and at most "
