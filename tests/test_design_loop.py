@@ -4,7 +4,7 @@ TEXT`` must exit N and print TEXT (the named promise a broken certificate fails 
 line must exit 0.  After the block, the report of the tuned file is about the tuned gains and
 judges claims of scope gain-set.
 
-eros (about 30 s) is the default suite's representative; lunar and mars are slow (their tuners
+eros (38 s under load) is the default suite's representative; lunar and mars are slow (their tuners
 and the mars report of all 69 claims take minutes on a 2-core machine)."""
 
 from __future__ import annotations
