@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from lgw.tuning import vocabulary as V
-from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts
+from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts, claim_option
 from lgw.tuning.spec import option
 
 
@@ -24,6 +24,7 @@ class Options(ReportOptions):
                            secondary="--no-descent")
     cases: int = V.cases(100, "Monte Carlo cases for the simulation claims")
     seed: int = V.seed(1, "seed of the campaign")
+    claim: tuple = claim_option("settling-ftsm")
 
     def check(self) -> None:
         super().check()
@@ -86,4 +87,6 @@ def plan(opts: Options, system: Any) -> ReportJob:
         check_memory("--cases", opts.cases, case_bytes(P.T_SCENARIO, P.DT_SAMPLE))
     return ReportJob("lgw.tuning.eros.cmd_report:parts",
                      Inputs(g, opts.sim, opts.cases, opts.seed, opts.descent),
-                     opts.out is not None)
+                     opts.out is not None, only=tuple(opts.claim),
+                     gains_path="" if opts.gains is None else str(opts.gains),
+                     claim_option=True)

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from lgw.tuning import vocabulary as V
-from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts
+from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts, claim_option
 
 
 @dataclass(frozen=True)
@@ -18,6 +18,7 @@ class Options(ReportOptions):
                              "and the figures (tracking errors, thrust around the failure, d0e "
                              "against ||d||, V2 and Vlambda), and the command filter's "
                              "bandwidth swept (~2-5 min)")
+    claim: tuple = claim_option("attitude-F1")
 
 
 @dataclass(frozen=True)
@@ -62,7 +63,9 @@ def plan(opts: Options, system: Any) -> ReportJob:
     g = resolve(opts.gains)  # validated before anything is written
     run = replace(RunOptions(), **run_defaults(g))
     return ReportJob("lgw.tuning.lunar.cmd_report:parts", Inputs(g, opts.sim, run),
-                     opts.out is not None)
+                     opts.out is not None, only=tuple(opts.claim),
+                     gains_path="" if opts.gains is None else str(opts.gains),
+                     claim_option=True)
 
 
 def tuning_section(g):
