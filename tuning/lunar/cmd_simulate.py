@@ -299,6 +299,10 @@ def plan(opts: Options, system: Any) -> Job:
     check_filter_step(run, opts.cmd_wn is not None)
     if opts.cases is None:
         return SimulateJob(g, run, opts.plot is not None, opts.out is not None)
+    from lgw.tuning.io import check_memory
+
+    check_memory("--cases", opts.cases, CP.BYTES_PER_CASE, "the campaign's per-case draw and "
+                 "numbers")
     if opts.envelope == "certificate":
         from lgw.tuning.lunar.design import certificate_request
 
