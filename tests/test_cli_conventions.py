@@ -74,11 +74,18 @@ def test_there_are_choice_options_everywhere_expected():
 @pytest.mark.parametrize("verb, system, opt", [(v, s, p.opts[0]) for v, s, p in CHOICE_OPTIONS],
                          ids=lambda x: str(x))
 def test_every_choice_rejects_a_wrong_value_in_lgw_style(tmp_path, verb, system, opt):
+    from lgw.tuning.spec import option_fields, probe_value
+    from lgw.tuning.system import get_system
+
     out = tmp_path / "out"
     args = [verb, system, opt, "no-such-value"]
-    if verb == "tune":
-        args += ["--tf", "60", "--thrust-max", "50000"]
     cmd = next(c for v, s, c in COMMANDS if (v, s) == (verb, system))
+    # the command's other required options (tune mars: --tf, --thrust-max; tune eros: --ts,
+    # --thrust-max) at valid values, so that the wrong choice is the one error
+    required = {p.opts[0] for p in cmd.params if isinstance(p, click.Option) and p.required}
+    for f, o in option_fields(get_system(system).verbs[verb].load().Options):
+        if o.flag in required and o.flag not in (opt, "--out"):
+            args += [o.flag, str(probe_value(f, o))]
     takes_out = any("--out" in p.opts for p in cmd.params)
     args += ["--out", str(out)] if takes_out else []
     r = run_lgw(args)

@@ -97,6 +97,27 @@ CONTEXTS: dict[tuple[str, str, str], dict[str, Any]] = {
     ("tune", "mars", "--theta2"): {"a_max": 0.5, "neighborhood": 500.0},
     ("report", "mars", "--figures"): {"out": "<out>"},
     ("report", "mars", "--tuned"): {"out": "<out>"},
+    ("simulate", "lunar", "--envelope"): {"cases": 2},
+    ("simulate", "lunar", "--dispersion"): {"cases": 2},
+    **{("simulate", "eros", flag): {"scenario": "descent"}
+       for flag in ("--thrust-max", "--limit", "--isp", "--srp", "--nav")},
+}
+
+# A command with modes that change what its options mean (a scenario, a campaign, a figure
+# experiment) is probed in each mode as well: field -> value of the mode's base.  Every option
+# not part of the mode must change that mode's job or be refused there with a named error.
+MODES: dict[tuple[str, str], list[dict[str, Any]]] = {
+    ("simulate", "mars"): [{"dispersion": "table2", "cases": 3}, {"fig6": True},
+                           {"method": "dopri5"}],
+    ("simulate", "lunar"): [{"cases": 2}, {"failure": "none"}],
+    ("simulate", "eros"): [{"scenario": "descent"}, {"cases": 2},
+                           {"scenario": "descent", "cases": 2}],
+    ("tune", "mars"): [{"law": "bounded"}, {"law": "bounded-sat"}],
+    ("tune", "lunar"): [{"pointing": "coupled"}],
+    ("compare", "lunar"): [{"sweep": False}],
+    ("report", "mars"): [{"sim": False, "out": "<out>"}],
+    ("report", "lunar"): [{"sim": False}],
+    ("report", "eros"): [{"sim": False}],
 }
 # probes that replace a declared or derived one where the context needs another value
 CONTEXT_PROBES: dict[tuple[str, str, str], Any] = {
@@ -208,6 +229,10 @@ def check_options(mod: Any, system: Any, folder: Path, verb: str = "toy",
     bases = {"json": {"json": True}} if "json" in names else {"none": {}}
     if out_value is not None:
         bases["out"] = {"out": out_value}
+    for mode in MODES.get((verb, system_name), []):
+        bases["mode " + " ".join(f"{k}={v}" for k, v in mode.items())] = {
+            **(bases.get("json") or {}),
+            **{k: (out_value if v == "<out>" else v) for k, v in mode.items()}}
     findings: list[Finding] = []
     for bname, base in bases.items():
         base = _complete(cls, dict(base), folder, system_name, verb)
@@ -223,8 +248,18 @@ def check_options(mod: Any, system: Any, folder: Path, verb: str = "toy",
                 continue
             findings.append(_probe_one(mod, system, base, ref, f, o, val, bname,
                                        (verb, system_name, o.flag)))
+            if bname.startswith("mode ") and findings[-1].verdict == "IGNORED":
+                # in a mode the declared probe may be that mode's own default (--no-figures
+                # without --sim): any other value of a flag or a choice that changes the job
+                for alt in _alternatives(f, o, val):
+                    fa = _probe_one(mod, system, base, ref, f, o, alt, bname,
+                                    (verb, system_name, o.flag))
+                    if fa.verdict != "IGNORED":
+                        findings[-1] = fa
+                        break
             ctx_key = (verb, system_name, o.flag)
-            if findings[-1].verdict == "refused" and ctx_key in CONTEXTS and bname != "out":
+            if findings[-1].verdict == "refused" and ctx_key in CONTEXTS and \
+                    bname in ("json", "none"):
                 ctx = {k: (out_value if v == "<out>" else v)
                        for k, v in CONTEXTS[ctx_key].items()}
                 cbase = {**base, **ctx}
@@ -243,6 +278,13 @@ def check_options(mod: Any, system: Any, folder: Path, verb: str = "toy",
                                              f"its context {ctx}: {fc.detail}")
                 findings.append(fc)
     return findings
+
+
+def _alternatives(f: dataclasses.Field, o: Any, val: Any) -> list[Any]:
+    """The other values of a flag or a choice option than ``val``."""
+    if o.is_flag or o.secondary is not None:
+        return [not val]
+    return [c for c in getattr(o.type, "choices", None) or () if c != val]
 
 
 def _probe_one(mod: Any, system: Any, base: dict[str, Any], ref: str,
@@ -279,6 +321,27 @@ def _commands() -> list[Any]:
 
 COMMANDS = _commands()
 SUMMARY: dict[str, dict[str, int]] = {}
+VERDICTS = ("changes", "refused", "shared-execution", "plan-time", "IGNORED", "not-probed")
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _print_summary():
+    """The counts table (printed at the end with ``-s``): per command, its options and the
+    findings by verdict over every base (--json, --out, its modes and contexts)."""
+    yield
+    if not SUMMARY:
+        return
+    w = max(len(k) for k in SUMMARY)
+    print("\noptions test: findings per command (every option x every base)")
+    print(f"{'command':<{w}} {'options':>7} " + " ".join(f"{v:>7}" for v in VERDICTS))
+    total: dict[str, int] = {}
+    for cmd, c in SUMMARY.items():
+        print(f"{cmd:<{w}} {c.get('options', 0):>7} "
+              + " ".join(f"{c.get(v, 0):>{max(7, len(v))}}" for v in VERDICTS))
+        for k, n in c.items():
+            total[k] = total.get(k, 0) + n
+    print(f"{'total':<{w}} {total.get('options', 0):>7} "
+          + " ".join(f"{total.get(v, 0):>{max(7, len(v))}}" for v in VERDICTS))
 
 
 @pytest.fixture
@@ -304,7 +367,7 @@ def test_every_option_changes_the_job_or_is_refused(verb, system, tmp_path, stub
     counts: dict[str, int] = {}
     for fd in findings:
         counts[fd.verdict] = counts.get(fd.verdict, 0) + 1
-    SUMMARY[f"{verb} {system}"] = counts
+    SUMMARY[f"{verb} {system}"] = {"options": len(list(option_fields(mod.Options))), **counts}
     print(f"\n{verb} {system}: {len(list(option_fields(mod.Options)))} options, "
           + ", ".join(f"{k} {n}" for k, n in sorted(counts.items())))
     ignored = [f"{fd.flag} [{fd.base}]: {fd.detail}" for fd in findings
@@ -400,3 +463,28 @@ def test_checker_sees_an_option_ignored_where_it_applies(tmp_path):
     assert found[("--level", "none")] == "refused"
     assert found[("--level", "context")] == "IGNORED"
     assert found[("--mode", "none")] == "changes"
+
+
+def test_checker_sees_an_option_ignored_in_a_mode(tmp_path):
+    """An option that changes the job in the default mode but is ignored in another mode (a
+    scenario, a campaign) is flagged there."""
+
+    @dataclass(frozen=True)
+    class Opts(Options):
+        scenario: str = option("--scenario", None, "a", "a or b", probe="b")
+        level: float = option("--level", Number(0, 10), 1.0, "used in scenario a only")
+
+    @dataclass(frozen=True)
+    class J(Job):
+        scenario: str
+        level: float | None
+
+    toy = SimpleNamespace(Options=Opts, plan=lambda o, s: J(o.scenario, o.level
+                                                            if o.scenario == "a" else None))
+    MODES[("toy", "toy")] = [{"scenario": "b"}]
+    try:
+        found = {(f.flag, f.base): f.verdict for f in check_options(toy, None, tmp_path)}
+    finally:
+        MODES.pop(("toy", "toy"))
+    assert found[("--level", "none")] == "changes"
+    assert found[("--level", "mode scenario=b")] == "IGNORED"

@@ -3,11 +3,14 @@ generated from the schemas.
 
 Each applicable verb of each system (iterating the registry) runs for real on a cheap
 configuration with --json (and --out where the document is also a file there); the document on
-stdout and its copy under --out are validated.  The cases that take more than ~20 s warm
-(every report, tune mars, compare mars) are marked slow.  A schema that accepts anything
-would pass too, so ``test_schemas_reject_broken_documents`` breaks valid documents in the ways
-that matter (a head key missing, a wrong type, an unknown key, an impossible value) and
-requires a violation for each.
+stdout and its copy under --out are validated.  The cases that took more than ~10 s warm
+(the whole reports, tune lunar at its default step) are marked slow, and so are the mars runs of
+tune, verify and compare (2-5 s warm, but their verbs have fast runs of other systems here);
+every verb keeps a fast run in the default suite (report: one claim of report eros).  A schema
+that accepts anything would pass too, so ``test_schemas_reject_broken_documents`` breaks valid
+documents in the ways that matter (a head key missing, a wrong type, an unknown key, an
+impossible value) and requires a violation for each, and every real document above must be
+refused without its gains, with an unknown key, or with an outcome named ``surface_contact``.
 """
 
 from __future__ import annotations
@@ -32,8 +35,11 @@ RUNS = {
     ("bounds", "lunar"): [(["--eq0-min", "0.9"], 0, "bounds.json", ())],
     ("bounds", "eros"): [(["--dbar", "0.5"], 0, "bounds.json", ())],
     ("simulate", "mars"): [([], 0, None, ()), (["--fig6", "--t-max", "40"], 0, "fig6.json", ())],
-    ("simulate", "lunar"): [(["--t-max", "2"], 0, "summary.json", ())],
-    ("simulate", "eros"): [(["--law", "fuzzy-sign", "--t-max", "2"], 0, "simulate.json", ())],
+    ("simulate", "lunar"): [(["--t-max", "2"], 0, "summary.json", ()),
+                            (["--cases", "3", "--t-max", "5"], 0, "summary.json", ())],
+    ("simulate", "eros"): [(["--law", "fuzzy-sign", "--t-max", "2"], 0, "simulate.json", ()),
+                           (["--scenario", "descent", "--law", "fuzzy-sign", "--t-max", "50"],
+                            0, "simulate.json", ())],
     ("optimal", "mars"): [(["--n", "20"], 0, "optimal.json", ()),
                           (["--n", "20", "--min-tf", "--no-replay"], 0, "optimal.json", ())],
     ("tune", "eros"): [(["--ts", "10", "--thrust-max", "30", "--fresh-cases", "5"], 3, None,
@@ -44,9 +50,15 @@ RUNS = {
                          "--no-suggest"], 3, None, (SLOW,)),
                        (["--law", "bounded", "--tf", "120", "--thrust-max", "50000"], 0, None,
                         (SLOW,))],
+    ("tune", "lunar"): [(["--cases", "2", "--dt", "0.05"], 0, None, ()),
+                        (["--cases", "2", "--thrust-max", "100"], 3, None, ()),
+                        (["--cases", "2"], 0, None, (SLOW,))],
+    ("compare", "lunar"): [(["--dt", "0.05"], 0, "compare.json", ())],
+    ("compare", "eros"): [([], 0, "compare.json", ())],
     ("report", "lunar"): [(["--no-sim"], 0, None, (SLOW,))],
     ("report", "mars"): [([], 0, None, (SLOW,))],
-    ("report", "eros"): [(["--no-sim"], 0, None, (SLOW,))],
+    ("report", "eros"): [(["--no-sim", "--claim", "gravity-2"], 0, None, ()),
+                         (["--no-sim"], 0, None, (SLOW,))],
     ("verify", "lunar"): [(["--examples", "3", "--min-cases", "1"], 0, None, ())],
     ("verify", "eros"): [(["--examples", "3", "--min-cases", "1"], 0, None, ())],
     ("verify", "mars"): [(["--examples", "2", "--min-cases", "1", "--claim", "reaching-16"],
@@ -112,17 +124,71 @@ def test_document_validates_against_its_schema(verb, system, args, code, file, t
     assert list(doc)[:3] == ["lgw_version", "command", "gains"]
     assert doc["command"] == f"{verb} {system}"
     S.validate(doc)
+    _refused_when_broken(doc)
     if file is not None:
         on_disk = _strict((out / file).read_text())
         S.validate(on_disk)
         assert on_disk == doc
 
 
+OUTCOMES = {"landed", "propellant_exhausted", "nonfinite", "step_limit", "horizon",
+            "command_blown_up", "crashed", "below_surface", "completed", "tracked",
+            "quaternion_drift"}
+
+
+def _first_outcome(x, path=(), key="outcome"):
+    """Path of the first outcome in a document: a count keyed by an outcome (under an
+    ``outcomes`` record) or a ``key`` value; None when the document has none."""
+    if isinstance(x, dict):
+        for k, v in x.items():
+            if k == key and v in OUTCOMES or k in OUTCOMES and path[-1:] == ("outcomes",):
+                return (*path, k)
+            found = _first_outcome(v, (*path, k), key)
+            if found:
+                return found
+    elif isinstance(x, list):
+        for i, v in enumerate(x):
+            found = _first_outcome(v, (*path, i), key)
+            if found:
+                return found
+    return None
+
+
+def _refused_when_broken(doc: dict) -> None:
+    """The schema of this real document is not one that accepts anything: the document
+    without ``gains``, with an unknown top-level key, or with an outcome renamed to the
+    retired ``surface_contact`` (the shared vocabulary says ``crashed``) is refused."""
+    broken = copy.deepcopy(doc)
+    del broken["gains"]
+    assert S.errors(broken), "accepted without gains"
+    broken = {**copy.deepcopy(doc), "surprise": 1}
+    assert S.errors(broken), "accepted an unknown top-level key"
+    # where a row's ``outcome`` is display text (compare mars: "landed (refined, dt ...)"),
+    # its name in the vocabulary is ``outcome_name``
+    path = _first_outcome(doc, key="outcome_name") or _first_outcome(doc)
+    if path is None:
+        return
+    broken = copy.deepcopy(doc)
+    target = broken
+    for key in path[:-1]:
+        target = target[key]
+    if path[-1] in ("outcome", "outcome_name"):
+        target[path[-1]] = "surface_contact"
+    else:
+        target["surface_contact"] = target.pop(path[-1])
+    assert S.errors(broken), f"accepted the outcome surface_contact at {path}"
+
+
 def _valid(name: str) -> dict:
     """A small valid document of ``name`` for the negative test (checked valid first)."""
     gains = {"beta1": [2.8] * 3, "beta2": [4e-4] * 3, "alpha1": [0.5] * 3,
              "alpha2": [2e-5] * 3, "q1": 0.6, "q2": 1.5, "g1": 0.7, "g2": 1.9}
-    stats = {"min": 1.0, "median": 2.0, "max": 3.0}
+    stats = {"n": 3, "excluded": 0, "min": 1.0, "mean": 2.0, "median": 2.0, "max": 3.0}
+    none = {"n": 0, "excluded": 0, "min": None, "mean": None, "median": None, "max": None}
+    convergence = {"converged": True, "how": "step halving", "base": "RK4 dt = 0.05 s",
+                   "check": "RK4 dt = 0.025 s", "cases": 1, "cases_checked": 1,
+                   "outcome_changed": 0, "outcome_changed_cases": [], "metrics": {},
+                   "refined": {"cases": 0, "settled": 0, "dt": {}, "check": None}}
     docs = {
         "optimal.mars": {
             "lgw_version": "0.1.0", "command": "optimal mars", "gains": None,
@@ -135,16 +201,22 @@ def _valid(name: str) -> dict:
             "sources": [], "replays": [], "paper_fuel_optimal_kg": 212.9},
         "simulate.mars": {
             "lgw_version": "0.1.0", "command": "simulate mars", "gains": gains,
-            "summary": {"cases": 1, "landed": 1, "nonfinite": 0,
-                        "outcomes": {k: 0 for k in ("landed", "propellant_exhausted",
-                                                    "nonfinite", "step_limit", "horizon",
+            "summary": {"cases": 1, "landed": 1, "nonfinite": 0, "crashed": 0,
+                        "below_surface": 0,
+                        "outcomes": {k: 0 for k in ("landed", "crashed", "below_surface",
+                                                    "propellant_exhausted", "nonfinite",
+                                                    "step_limit", "horizon",
                                                     "command_blown_up")},
                         "fuel_kg": stats, "landing_time_s": stats,
+                        "impact_speed_mps": none, "contact_time_s": none,
+                        "convergence": convergence,
                         "settings": {"law": "corrected", "disturbance": "none", "cases": 1,
                                      "method": "rk4"}},
             "cases": [{"case": 0, "r0": [1.0, 2.0, 3.0], "v0": [0.0, 0.0, 0.0], "m0": 1905.0,
-                       "landed": True, "fuel": 200.0, "nonfinite": False,
-                       "outcome": "landed"}]},
+                       "landed": True, "landing_time": 27.4, "fuel": 200.0,
+                       "nonfinite": False, "ground_contact": False, "contact_time": None,
+                       "impact_speed": None, "below_surface": False, "refined_dt": None,
+                       "outcome": "landed", "outcome_time": 27.4, "converged": True}]},
     }
     d = docs[name]
     S.validate(d)
@@ -161,6 +233,8 @@ def _valid(name: str) -> dict:
     ("simulate.mars", ("command",), "simulate lunar"),
     ("simulate.mars", ("cases", 0, "fuel"), "lots"),
     ("simulate.mars", ("nonfinite_replaced",), False),
+    ("simulate.mars", ("cases", 0, "outcome"), "surface_contact"),  # the retired name
+    ("simulate.mars", ("summary", "outcomes", "landed"), -1),
     ("optimal.mars", ("solution", "fuel_kg"), -4e-12),  # impossible: negative fuel
     ("optimal.mars", ("gains",), {"q1": 1.0}),  # the optimum flies no gain set
     ("optimal.mars", ("solution", "r", 0), [1.0, 2.0]),

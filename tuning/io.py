@@ -205,7 +205,9 @@ MAX_SWAP_TRIES = 20
 class Stream:
     """Content produced piece by piece (flat memory for a million cases): ``write(f)`` writes
     text into the open file ``f``.  In a JSON document, a ``Stream`` of items (``items``:
-    an iterable of JSON values) is written as an array, one item at a time."""
+    an iterable of JSON values) is written as an array, one item at a time; ``items`` may be
+    a function returning a fresh iterator, so that one document can be written twice (to
+    stdout and into ``--out``) without holding its items in memory."""
 
     def __init__(self, items: Any = None, write: Any = None) -> None:
         self.items, self.write = items, write
@@ -369,7 +371,8 @@ def write_output_set(folder: Path, files: dict[str, Any], command: str,
 def _stream_json(value: Any, out: Any, flag: list[bool]) -> None:
     if isinstance(value, Stream):
         out.write("[")
-        for i, item in enumerate(value.items):
+        items = value.items() if callable(value.items) else value.items
+        for i, item in enumerate(items):
             clean, bad = finite_or_null(item)
             flag[0] = flag[0] or bad
             out.write(("," if i else "") + json.dumps(clean, allow_nan=False))

@@ -76,11 +76,12 @@ class Options(Options):
                                  "plant gravity [default: two-point; the descent: polyhedron]; "
                                  "tracking's polyhedron is slow (single cases); the descent's "
                                  "is re-evaluated every 10 m, polyhedron-exact at every "
-                                 "evaluation (descent only)")
+                                 "evaluation (descent only)", probe="none")
     disturbance: str | None = option("--disturbance", choice(("known", "unknown", "none")),
                                      None, "the paper's sinusoid D: known (in u_eq, (14)), "
                                      "unknown (bounded, not in u_eq) or none [default: known; "
-                                     "the descent: none (its SRP is always there, unknown)]")
+                                     "the descent: none (its SRP is always there, unknown)]",
+                                     probe="unknown")
     cubic: str = option("--cubic", choice(("exact", "printed")), "exact",
                         "reference cubic (8)-(10): the exact coefficients or the printed ones")
     thrust_max: float | None = V.thrust_max(None, "descent only, per axis or on the norm "

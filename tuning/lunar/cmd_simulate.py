@@ -168,7 +168,7 @@ class CampaignJob(Job):
     def run(self, progress: Any) -> Outcome:
         from lgw.sim.lunar import campaign as CP
         from lgw.sim.lunar.outcomes import OUTCOMES, json_safe
-        from lgw.tuning.io import Stream, json_stream
+        from lgw.tuning.io import Stream
         from lgw.tuning.stats import finite_stats
 
         opts = self.run_options
@@ -193,9 +193,10 @@ class CampaignJob(Job):
         if self.want_figures:
             progress.stage("figures of case 0")
             figures = _case0_figures(self.gains, opts, res)
-        doc = {**head, "cases": Stream(items=CP.iter_case_records(res))}
-        files = {"summary.json": json_stream({**head, "cases": Stream(
-            items=CP.iter_case_records(res))})}
+        # summary.json is the --json document itself (with its lgw_version, command, gains
+        # head); the cases are re-generated for each of the two writes
+        doc = {**head, "cases": Stream(items=lambda: CP.iter_case_records(res))}
+        files = {"summary.json": DOCUMENT}
         return Outcome(doc, render=lambda con: _render_campaign(con, head), files=files,
                        figures=figures, flags=flags)
 
@@ -298,6 +299,10 @@ def plan(opts: Options, system: Any) -> Job:
     check_filter_step(run, opts.cmd_wn is not None)
     if opts.cases is None:
         return SimulateJob(g, run, opts.plot is not None, opts.out is not None)
+    from lgw.tuning.io import check_memory
+
+    check_memory("--cases", opts.cases, CP.BYTES_PER_CASE, "the campaign's per-case draw and "
+                 "numbers")
     if opts.envelope == "certificate":
         from lgw.tuning.lunar.design import certificate_request
 

@@ -94,7 +94,9 @@ class TuneJob(Job):
                            stderr=[f"infeasible: {res.reason}", "nothing written"])
         cert = certificate(res, self.request, self.command)
         text = gains_file_text(res.gains, cert)
-        doc = {"feasible": True, "tuned_gains": res.gains.to_dict(), "certificate": cert,
+        # gains: the designed set, as every tuner's document (tune mars, tune eros)
+        doc = {"gains": res.gains.to_dict(), "feasible": True,
+               "tuned_gains": res.gains.to_dict(), "certificate": cert,
                "bandwidth_sweep": res.bandwidth.to_dict(), "tried": res.tried}
         return Outcome(doc, render=lambda con: _render(con, res, cert),
                        files={"gains.toml": text})

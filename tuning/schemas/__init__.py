@@ -63,10 +63,24 @@ def errors(doc: Any, name: str | None = None) -> list[str]:
         return [f"no schema for {name!r} (tuning/schemas/{name}.json)"]
     v = Draft202012Validator(load(name), registry=_registry())
     out = []
-    for e in sorted(v.iter_errors(doc), key=lambda e: list(map(str, e.absolute_path))):
+    leaves = [x for e in v.iter_errors(doc) for x in _closest(e)]
+    for e in sorted(leaves, key=lambda e: list(map(str, e.absolute_path))):
         path = "/".join(str(p) for p in e.absolute_path) or "(document)"
         out.append(f"{path}: {e.message[:300]}")
     return out
+
+
+def _closest(error: Any) -> list[Any]:
+    """A document that matches none of a ``oneOf``'s forms (a Section 5 run or a campaign,
+    tracking or descent) is reported by the violations of the form it is closest to (fewest
+    violations), not as one line holding the whole document."""
+    if error.validator not in ("oneOf", "anyOf") or not error.context:
+        return [error]
+    by_form: dict[Any, list[Any]] = {}
+    for sub in error.context:
+        by_form.setdefault(sub.relative_schema_path[0], []).append(sub)
+    best = min(by_form.values(), key=len)
+    return [x for sub in best for x in _closest(sub)]
 
 
 def validate(doc: Any, name: str | None = None) -> None:
