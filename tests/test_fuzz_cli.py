@@ -736,13 +736,12 @@ def test_former_internal_errors_are_named_errors(args, name, valid, tmp_path):
 
 
 @pytest.mark.parametrize("args", [["simulate", "mars", "--dispersion", "table2"],
-                                  ["simulate", "eros"], ["report", "eros", "--json"]])
+                                  ["simulate", "lunar"], ["simulate", "eros"],
+                                  ["report", "eros", "--json"]])
 def test_the_largest_cases_is_estimated_before_allocating(args, tmp_path, monkeypatch):
     """The largest --cases each system allows fails by the memory estimate, with the number
     that fits, never a MemoryError (the available memory is pinned so the test does not depend
-    on the machine).  Lunar campaigns are not here: they fly 64 cases at a time with the
-    records on disk (lgw.sim.lunar.campaign), so their memory does not grow with --cases and
-    the largest campaign is accepted (and runs for hours)."""
+    on the machine)."""
     import lgw.tuning.io as tio
     from lgw.tuning.mars import cmd_simulate as ms
     from lgw.tuning.vocabulary import MAX_CASES
