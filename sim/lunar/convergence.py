@@ -126,16 +126,19 @@ class Convergence:
         pre = f"{label}: " if label else ""
         out = []
         if self.outcome != self.refined_outcome:
-            out.append(f"{pre}outcome {self.outcome} at dt = {self.dt:g} s but "
+            out.append(f"{pre}UNCONVERGED outcome {self.outcome} at dt = {self.dt:g} s but "
                        f"{self.refined_outcome} at dt = {self.refined_dt:g} s: not converged")
         for c in self.unconverged:
-            out.append(f"{pre}{c.name} = {c.value:.6g} {c.unit} at dt = {self.dt:g} s, "
+            out.append(f"{pre}UNCONVERGED {c.name} = {c.value:.6g} {c.unit} at dt = {self.dt:g} s, "
                        f"{c.refined:.6g} at dt = {self.refined_dt:g} s: differs by "
                        f"{100 * c.difference:.3g} % (> {100 * RTOL:g} %): not converged")
         return out
 
     def to_dict(self) -> dict[str, Any]:
-        return {"dt": self.dt, "refined_dt": self.refined_dt, "rtol": RTOL,
+        # the shared record's keys (how, base, check, cases, cases_checked, metrics, ...) as
+        # every system prints them, then seed 001's own: the steps and each quoted number
+        shared = self.record.to_dict() if self.record is not None else {}
+        return {**shared, "dt": self.dt, "refined_dt": self.refined_dt, "rtol": RTOL,
                 "criterion": "|x(dt) - x(dt/k)| <= rtol max(|x(dt/k)|, floor)",
                 "converged": self.converged, "outcome": self.outcome,
                 "refined_outcome": self.refined_outcome,

@@ -38,9 +38,14 @@ class _Quiet:
 
 
 def _report_claims(gains):
-    from lgw.tuning.lunar.cmd_report import Inputs, parts
+    from dataclasses import replace
 
-    return {c.id: c for c in parts(Inputs(gains, False), _Quiet()).claims}
+    from lgw.sim.lunar.closed_loop import RunOptions
+    from lgw.tuning.lunar.cmd_report import Inputs, parts
+    from lgw.tuning.lunar.gainset import run_defaults
+
+    run = replace(RunOptions(), **run_defaults(gains))
+    return {c.id: c for c in parts(Inputs(gains, False, run), _Quiet()).claims}
 
 
 def test_two_gain_sets_change_every_gain_set_claim():

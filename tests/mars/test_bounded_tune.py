@@ -73,7 +73,6 @@ def test_cli_writes_a_loadable_file(tmp_path):
     run = _run(["tune", "mars", "--law", "bounded", "--tf", "200", "--thrust-max", "50000",
                 "--envelope", "table3", "--out", str(out)])
     assert run.returncode == 0, run.stderr
-    assert "lgw: " in run.stderr  # one progress line per stage when stderr is piped
     g = load_gains(out)
     bg = B.bounded_from_extra(g.extra)
     cert = g.extra["certificate"]

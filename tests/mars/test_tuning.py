@@ -275,8 +275,9 @@ def _fuel_limited_sim(slowest: float):
         f = {k: np.zeros((n, 3)) if k in VECTOR_FIELDS else np.zeros(n) for k in ARRAY_FIELDS}
         f["y_end"] = np.zeros((n, 7))
         for k in ("landed", "nonfinite", "ground_contact", "fuel_exhausted", "step_limit",
-                  "blown_up"):
+                  "blown_up", "contact", "below_surface"):
             f[k] = np.zeros(n, dtype=bool)
+        f["contact_time"][:] = np.nan
         f["landed"][:] = T <= slowest
         f["landing_time"][:] = T / 2 if T <= slowest else np.nan
         f["peak_thrust_unsat"][:] = 0.5 * thrust_limit

@@ -241,6 +241,8 @@ def _render(con: Any, ref: Any, opts: Any, sums: list[dict[str, Any]],
     result_table(con, f"convergence: dt = {conv.dt:g} s against dt/4 = {conv.refined_dt:g} s "
                  "(1 % or the floor)", ("number", "dt", "dt/4", "difference", "converged"),
                  crow)
+    for line in conv.record.notes() if conv.record is not None else ():
+        con.print(line, markup=False)  # the line every system prints
 
 
 def _render_campaign(con: Any, head: dict[str, Any]) -> None:
