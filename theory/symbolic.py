@@ -61,3 +61,15 @@ def on_branch(expr: sp.Expr, signs: Mapping[sp.Symbol, int]) -> tuple[sp.Expr, d
         xp = sp.Symbol(f"{s.name}_abs", positive=True)
         subs[s] = sgn * xp
     return sp.powsimp(sp.expand(expr.subs(subs)), force=False), subs
+
+
+def clear_module_caches(modules: tuple[str, ...]) -> None:
+    """Forget every memoised result (``functools.cache``) of the named modules that are loaded:
+    a changed law, bound or constant is then derived afresh (the mutation harnesses use it)."""
+    import sys
+
+    for name in modules:
+        mod = sys.modules.get(name)
+        for obj in vars(mod).values() if mod else ():
+            if callable(getattr(obj, "cache_clear", None)):
+                obj.cache_clear()

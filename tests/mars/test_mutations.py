@@ -26,17 +26,11 @@ GAINS = [default_gains()]  # the gain set the claims are judged for (a mutation 
 
 def clear_caches() -> None:
     """Forget every memoised claim, law, closed loop and search of seed 000."""
-    import lgw.theory.mars.bounded_claims as BC
-    import lgw.theory.mars.claims as MC
-    import lgw.theory.mars.mss as MM
-    import lgw.theory.mars.searches as MS
-    import lgw.theory.settling_proofs as SP
+    from lgw.theory.symbolic import clear_module_caches
 
-    for mod in (MC, BC, MM, MS, SP):
-        for name in dir(mod):
-            f = getattr(mod, name)
-            if callable(f) and hasattr(f, "cache_clear"):
-                f.cache_clear()
+    clear_module_caches(("lgw.theory.mars.claims", "lgw.theory.mars.bounded_claims",
+                         "lgw.theory.mars.mss", "lgw.theory.mars.searches",
+                         "lgw.theory.settling_proofs"))
 
 
 def compute():

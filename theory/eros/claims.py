@@ -1273,15 +1273,10 @@ MODULES = ("lgw.theory.eros.laws", "lgw.theory.eros.claims", "lgw.theory.eros.re
 
 
 def clear_caches() -> None:
-    """Forget every cached claim and intermediate result (a changed law, bound or constant is
-    then derived afresh: the mutation tests use it)."""
-    import sys
+    """Forget every cached claim and intermediate result of seed 002 (``MODULES``)."""
+    from lgw.theory.symbolic import clear_module_caches
 
-    for name in MODULES:
-        mod = sys.modules.get(name)
-        for obj in vars(mod).values() if mod else ():
-            if callable(getattr(obj, "cache_clear", None)):
-                obj.cache_clear()
+    clear_module_caches(MODULES)
 
 
 # --- the whole descent: where the fitted two-point model holds ------------------------------------

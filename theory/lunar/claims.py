@@ -8,7 +8,6 @@ imports sim).
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Sequence
 
 from lgw.theory.evidence import Claim
@@ -43,10 +42,7 @@ MODULES = ("lgw.theory.lunar.law", "lgw.theory.lunar.derivation", "lgw.theory.lu
 
 
 def clear_caches() -> None:
-    """Forget every cached claim and intermediate result (a changed law, bound or constant is
-    then derived afresh: the mutation tests use it)."""
-    for name in MODULES:
-        mod = sys.modules.get(name)
-        for obj in vars(mod).values() if mod else ():
-            if callable(getattr(obj, "cache_clear", None)):
-                obj.cache_clear()
+    """Forget every cached claim and intermediate result of seed 001 (``MODULES``)."""
+    from lgw.theory.symbolic import clear_module_caches
+
+    clear_module_caches(MODULES)
