@@ -94,6 +94,7 @@ from lgw.sim.integrate import (  # noqa: F401  (re-exported: the integrator's ta
 )
 from lgw.sim.kernel_cache import CompileNotice
 from lgw.sim.mars import kernel as mars_kernel
+from lgw.sim.mars import lanes as mars_lanes
 from lgw.sim.mars.disturbances import KIND_CODE, DisturbanceSpec, make_disturbance
 from lgw.sim.mars.laws import get_law, surface_params
 from lgw.sim.mars.parameters import (
@@ -316,7 +317,7 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
                    m_dry: float = M_DRY, method: str = "rk4", rtol: float = DOPRI_RTOL,
                    atol: float = DOPRI_ATOL, max_step: float = DOPRI_MAX_STEP,
                    max_steps: int = DOPRI_MAX_STEPS,
-                   blowup_accel: float | None = None) -> BatchResult:
+                   blowup_accel: float | None = None, kernel: str = "scalar") -> BatchResult:
     """Fly N cases of seed 000's closed loop with RK4 or dopri5 (see the module docstring).
 
     The keyword front of ``simulate`` (which takes option objects): it validates the keywords,
@@ -349,6 +350,9 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
     blowup_accel: a commanded acceleration above it (m/s^2) ends the case as
       ``command_blown_up`` (default ``BLOWUP_ACCEL``; inf: only a non-finite command does, as
       the bound checks with unlimited thrust need).
+    kernel: "scalar" (``lgw.sim.integrate``, one case at a time) or "lanes"
+      (``lgw.sim.mars.lanes``: blocks of cases stepped together, the law in SIMD across
+      them; the same results to the law's last few ulp, see docs/sim.md).
     """
     r0, v0, m0 = _check_states(r0, v0, m0)
     m_dry = check_m_dry(m_dry, m0)
@@ -356,7 +360,8 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
                             limit=limit, dt=dt, t_max=t_max, eps=eps, drag=drag,
                             guidance_drag=guidance_drag, isp=isp, land_tol=land_tol, stop=stop)
     integration = IntegrationOptions(method=method, dt=dt, rtol=rtol, atol=atol,
-                                     max_step=max_step, max_steps=max_steps, record=record)
+                                     max_step=max_step, max_steps=max_steps, record=record,
+                                     kernel=kernel)
     stopping = StoppingOptions(stop=stop, t_max=float(t_max), land_tol=tuple(land_tol),
                                m_dry=m_dry, blowup_accel=blowup_accel)
     limits = LimitOptions(thrust_limit=thrust_limit, kind=limit)
@@ -431,10 +436,11 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
     rec_y = np.full(shape_rec + (mars_kernel.NY,), np.nan)
     rec_x = np.full(shape_rec + (mars_kernel.NX,), np.nan)
 
-    mod = mars_kernel.kernel_module(law)
+    lanes = integration.kernel == "lanes"
+    mod = mars_lanes.kernel_module(law) if lanes else mars_kernel.kernel_module(law)
     kernel = mod.kernel_parallel if parallel else mod.kernel_serial
-    notice = CompileNotice(kernel, f"the mars/{law} kernel{'' if parallel else ' (serial)'}",
-                           expected="~30-60 s")
+    notice = CompileNotice(kernel, f"the mars/{law} {'lane ' if lanes else ''}kernel"
+                           f"{'' if parallel else ' (serial)'}", expected="~30-60 s")
 
     def run(sl: slice) -> None:
         integrate.run_chunk(kernel, sl, C, Q, R, O, G, rec_y, rec_x)
@@ -466,6 +472,8 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
                            f"max_step={integration.max_step} s, first step {integration.dt} s "
                            "(numba)"),
             "boundary_layer": None}
+    if lanes:  # (the scalar kernel's records stay as they were)
+        info["kernel"] = "lanes"
     return BatchResult(eps=float(eps), dt=float(integration.dt), r0=r0, v0=v0, m0=m0,
                        trajectory=traj, info=info, **out)
 
