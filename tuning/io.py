@@ -205,10 +205,13 @@ MAX_SWAP_TRIES = 20
 class Stream:
     """Content produced piece by piece (flat memory for a million cases): ``write(f)`` writes
     text into the open file ``f``.  In a JSON document, a ``Stream`` of items (``items``:
-    an iterable of JSON values) is written as an array, one item at a time."""
+    an iterable of JSON values) is written as an array, one item at a time; or, given
+    ``encoded`` (an iterable of texts, each one or more array items already encoded as strict
+    JSON and joined by ","), the texts are written as they are (no per-value walk: the
+    producer answers for strict JSON)."""
 
-    def __init__(self, items: Any = None, write: Any = None) -> None:
-        self.items, self.write = items, write
+    def __init__(self, items: Any = None, write: Any = None, encoded: Any = None) -> None:
+        self.items, self.write, self.encoded = items, write, encoded
 
 
 def _same_file(a: Path, b: Path) -> bool:
@@ -367,7 +370,15 @@ def write_output_set(folder: Path, files: dict[str, Any], command: str,
 
 
 def _stream_json(value: Any, out: Any, flag: list[bool]) -> None:
-    if isinstance(value, Stream):
+    if isinstance(value, Stream) and value.encoded is not None:
+        out.write("[")
+        first = True
+        for text in value.encoded:
+            if text:
+                out.write(text if first else "," + text)
+                first = False
+        out.write("]")
+    elif isinstance(value, Stream):
         out.write("[")
         for i, item in enumerate(value.items):
             clean, bad = finite_or_null(item)

@@ -183,12 +183,13 @@ class SimulateJob(Job):
 
             res = simulate_reference(r0, v0, m0, self.gains, progress=False, **self.sim)
         else:
+            # local campaigns keep their per-case results on disk (flat memory)
             res = campaign.run_campaign(r0, v0, m0, self.gains, progress=progress.live,
-                                        **self.executor, **self.sim)
+                                        spill=not self.executor, **self.executor, **self.sim)
         summ = campaign.summarize(res)
         summ["settings"] = settings_used(res, self.sim, reference=self.reference,
                                          **self.described)
-        cases = Stream(items=campaign.iter_case_records(res))
+        cases = Stream(encoded=campaign.iter_case_json(res))
         figures = []
         if self.want_figures:
             progress.stage("figures")
@@ -198,7 +199,7 @@ class SimulateJob(Job):
         head = {"command": "simulate mars", **self.gains.to_dict()}
         files = {"summary.json": json_stream({**head, **summ}, indent=1),
                  "cases.json": json_stream({**head, "cases": Stream(
-                     items=campaign.iter_case_records(res))}),
+                     encoded=campaign.iter_case_json(res))}),
                  "cases.csv": Stream(
                      write=lambda f: write_cases_csv(campaign.iter_case_records(res), f))}
         return Outcome({"summary": summ, "cases": cases},
