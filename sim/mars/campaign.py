@@ -143,20 +143,50 @@ def _stats(x: np.ndarray) -> dict[str, float | None]:
     return {"min": float(x.min()), "median": float(np.median(x)), "max": float(x.max())}
 
 
+def _chunks(res: BatchResult | SpilledResult) -> Iterator[slice]:
+    return iter(chunk_slices(len(res), SPILL_CHUNK)) if len(res) else iter(())
+
+
+def _column(res: BatchResult | SpilledResult, name: str, sl: slice) -> np.ndarray:
+    if isinstance(res, SpilledResult):
+        return res.column(name, sl)
+    return getattr(res, name)[sl]
+
+
+def _gather(res: BatchResult | SpilledResult, name: str, keep: np.ndarray | None,
+            fn: Any = None) -> np.ndarray:
+    """fn(array ``name``)[keep], read SPILL_CHUNK cases at a time (a ``SpilledResult`` holds
+    one chunk of the column in memory, and the values kept)."""
+    parts = []
+    for sl in _chunks(res):
+        x = _column(res, name, sl)
+        x = x if fn is None else fn(x)
+        parts.append(x if keep is None else x[keep[sl]])
+    return np.concatenate(parts) if parts else np.array([])
+
+
 def summarize(res: BatchResult | SpilledResult) -> dict[str, Any]:
-    """Min / median / max over landed cases, and the counts, with eps and dt.  Each per-case
-    array is read once and dropped when done (a ``SpilledResult`` reads it from disk)."""
+    """Min / median / max over landed cases, and the counts, with eps and dt.  The per-case
+    arrays are read a chunk at a time (``_gather``): what a million cases hold at once is the
+    values of one statistic (8 bytes per case) and the flags (1 byte each)."""
     landed = res.landed
     nonfinite = res.nonfinite
     ok = landed & ~nonfinite
-    some = bool(ok.any())
-    err = np.linalg.norm(res.r_land[ok], axis=1) if some else np.array([])
-    speed = np.linalg.norm(res.v_land[ok], axis=1) if some else np.array([])
+    outcomes = counts(np.array([], int))
+    for sl in _chunks(res):
+        for k, v in counts(result_rows(res, sl).outcomes()[0]).items():
+            outcomes[k] += v
 
-    def axes(name: str) -> dict[str, dict[str, float | None]]:
-        a = getattr(res, name)[ok]
-        return {ax: _stats(a[:, i]) for i, ax in enumerate("xyz")}
-    after = res.peak_thrust_after_arrival
+    def norm(x: np.ndarray) -> np.ndarray:
+        return np.linalg.norm(x, axis=1)
+
+    def axes(name: str, keep: np.ndarray | None = ok) -> dict[str, dict[str, float | None]]:
+        return {ax: _stats(_gather(res, name, keep, lambda x, i=i: x[:, i]))
+                for i, ax in enumerate("xyz")}
+
+    def arrived(i: int) -> dict[str, float | None]:
+        a = _gather(res, "peak_thrust_after_arrival", None, lambda x: x[:, i])
+        return {**_stats(a), "arrived": int(np.sum(np.isfinite(a)))}
     out: dict[str, Any] = {
         "cases": len(res), "landed": int(landed.sum()),
         "not_landed": int((~landed).sum()), "nonfinite": int(nonfinite.sum()),
@@ -168,11 +198,11 @@ def summarize(res: BatchResult | SpilledResult) -> dict[str, Any]:
         "step_limit": int(res.step_limit.sum()),
         # one outcome per case (lgw.sim.results: the first that happened), every outcome
         # listed; the flags above may overlap, these do not and sum to "cases"
-        "outcomes": counts(res.outcomes()[0]),
-        "landing_error_m": _stats(err),
-        "landing_speed_mps": _stats(speed),
-        "landing_time_s": _stats(res.landing_time[ok]),
-        "fuel_kg": _stats(res.fuel[ok]),
+        "outcomes": outcomes,
+        "landing_error_m": _stats(_gather(res, "r_land", ok, norm)),
+        "landing_speed_mps": _stats(_gather(res, "v_land", ok, norm)),
+        "landing_time_s": _stats(_gather(res, "landing_time", ok)),
+        "fuel_kg": _stats(_gather(res, "fuel", ok)),
         # node peaks (the tuner's measure) and stage peaks (every rhs evaluation of the
         # accepted steps, >= the node peaks; lgw.sim.mars.batch), over landed cases
         "peak_thrust_N": axes("peak_thrust"),
@@ -180,12 +210,10 @@ def summarize(res: BatchResult | SpilledResult) -> dict[str, Any]:
         "peak_thrust_unsat_stages_N": axes("peak_thrust_unsat_stages"),
         # per axis, max |F_i| from its first node in the landing band on, over every case
         # whose axis got there ("arrived": how many did)
-        "peak_thrust_after_arrival_N": {
-            ax: {**_stats(after[:, i]), "arrived": int(np.sum(np.isfinite(after[:, i])))}
-            for i, ax in enumerate("xyz")},
-        "time_saturated_s": _stats(res.time_saturated[ok]),
+        "peak_thrust_after_arrival_N": {ax: arrived(i) for i, ax in enumerate("xyz")},
+        "time_saturated_s": _stats(_gather(res, "time_saturated", ok)),
         # over all cases, up to landing (negative: below ground, see ground_contact)
-        "min_altitude_m": _stats(res.min_altitude),
+        "min_altitude_m": _stats(_gather(res, "min_altitude", None)),
         "eps": res.eps, "dt": res.dt,
     }
     out["settings"] = {k: v for k, v in res.info.items()}
@@ -263,9 +291,20 @@ def iter_case_json(res: BatchResult | SpilledResult, n: int | None = None) -> It
         yield ",".join(buf)
 
 
+class CaseJson:
+    """``iter_case_json(res, n)`` as an iterable that starts afresh at each iteration (for
+    ``Stream(encoded=...)``: a document may be written twice, to --out and to stdout)."""
+
+    def __init__(self, res: BatchResult | SpilledResult, n: int | None = None) -> None:
+        self.res, self.n = res, n
+
+    def __iter__(self) -> Iterator[str]:
+        return iter_case_json(self.res, self.n)
+
+
 # --- campaigns kept on disk -----------------------------------------------------------------
 
-SPILL_CHUNK = 65536  # cases flown, then written to disk, at a time (~40 MB of results)
+SPILL_CHUNK = 16384  # cases flown, then written to disk, at a time (~10 MB of results)
 _SPILLED = tuple(dict.fromkeys((*ARRAY_FIELDS, "r0", "v0", "m0")))
 
 

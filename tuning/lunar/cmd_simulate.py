@@ -88,23 +88,20 @@ class SimulateJob(Job):
     want_overview: bool
 
     def run(self, progress: Any) -> Outcome:
-        from lgw.sim.lunar.batch import rk4_batch
-        from lgw.sim.lunar.closed_loop import initial_state, make_context
-        from lgw.sim.lunar.outcomes import case_record, counts, json_safe
+        from lgw.sim.lunar import campaign
+        from lgw.sim.lunar.outcomes import json_safe
         from lgw.sim.lunar.reference import reference
-        from lgw.sim.lunar.scenario import summarize
+        from lgw.tuning.io import Stream
 
         ref = reference()
-        dh, dv, Q0 = self.states
-        n = len(dh)
+        n = len(self.states[0])
         opts = self.run_options
         progress.stage(f"flying {n} case{'s' if n > 1 else ''} (RK4, dt = {opts.dt} s)")
-        ctx = make_context(ref, [self.gains] * n, opts)
-        X0 = initial_state(ref, dh, dv, Q0, np.zeros((3, n)), [self.gains] * n)
-        res = rk4_batch(ctx, X0, record_every=max(1, int(round(0.1 / opts.dt))))
-        sums = [json_safe({**summarize(res, ctx, i).numbers, **case_record(res.cases, i)})
-                for i in range(n)]
-        outcomes = counts(res.cases["outcome"])
+        # flown a chunk at a time, the records kept on disk (flat memory in the cases)
+        camp = campaign.fly(ref, self.gains, opts, self.states,
+                            record_every=max(1, int(round(0.1 / opts.dt))), keep=PRINTED_CASES)
+        res, ctx = camp.first_run  # case 0, for the figures
+        sums, outcomes = camp.first_records, camp.outcomes
         figures, files = [], {"summary.json": DOCUMENT}
         if self.want_figures:
             progress.stage("figures")
@@ -118,13 +115,13 @@ class SimulateJob(Job):
 
             files["section5.png"] = section5_png(res)
         doc = {"options": json_safe(dict(opts.__dict__)), "reference": ref.to_dict(),
-               "outcomes": outcomes, "cases": sums}
-        return Outcome(doc, render=lambda con: _render(con, ref, opts, sums, outcomes),
+               "outcomes": outcomes, "cases": Stream(encoded=camp)}
+        return Outcome(doc, render=lambda con: _render(con, ref, opts, sums, outcomes, n),
                        files=files, figures=figures)
 
 
 def _render(con: Any, ref: Any, opts: Any, sums: list[dict[str, Any]],
-            outcomes: dict[str, int]) -> None:
+            outcomes: dict[str, int], n: int) -> None:
     from lgw.tuning.tables import fmt, result_table
 
     con.print(f"reference: t_f = {ref.tf:.3f} s, a1 = {ref.a1:.6g}, a2 = {ref.a2:.6g} 1/s, "
@@ -136,8 +133,8 @@ def _render(con: Any, ref: Any, opts: Any, sums: list[dict[str, Any]],
              f"{fmt(s['d0e_orbit_final'])}/{fmt(s['d0e_attitude_final'])}",
              f"{s['outcome']} at {fmt(s['t_outcome_s'])} s")
             for i, s in enumerate(sums[:PRINTED_CASES])]
-    result_table(con, f"seed 001: {len(sums)} case(s)" + (
-        f", the first {PRINTED_CASES} shown" if len(sums) > PRINTED_CASES else ""),
+    result_table(con, f"seed 001: {n} case(s)" + (
+        f", the first {PRINTED_CASES} shown" if n > PRINTED_CASES else ""),
         ("case", "e_h(t_f) m", "|e_v(t_f)| m/s", "max|e_h| m", "orbit sat s",
          "sat after failure s", "torque sat s", "d0e orbit/att", "outcome"), rows)
     con.print("outcomes: " + ", ".join(f"{k} {v}" for k, v in outcomes.items()), markup=False)

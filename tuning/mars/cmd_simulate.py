@@ -92,6 +92,10 @@ class Options(V.Dask):
     method: str = V.method("rk4")
     rtol: float = V.rtol(DOPRI_RTOL)
     atol: float = V.atol(DOPRI_ATOL, "m, m/s, kg")
+    kernel: str = option("--kernel", choice(("scalar", "lanes")), "scalar",
+                         "scalar: one case at a time; lanes: 16 cases stepped together, the "
+                         "law in SIMD across them (the same results to round-off; faster on "
+                         "campaigns: docs/sim.md)")
     max_step: float = option("--max-step", Number(0, 1e3, lo_open=True, unit="s"),
                              DOPRI_MAX_STEP, "dopri5 largest step, s (only with --method "
                              "dopri5)")
@@ -122,7 +126,7 @@ class Options(V.Dask):
             for name in ("dispersion", "initial_states", "cases", "seed", "disturbance",
                          "dist_amplitude", "thrust_max", "limit", "guidance_drag", "isp",
                          "m_dry", "method", "rtol", "atol", "max_step", "land_r", "land_v",
-                         "reference", "workers", "scheduler"):
+                         "reference", "workers", "scheduler", "kernel"):
                 r(False, name, "does not apply with --fig6 (the experiment flies Table I "
                   "with only s1x(0) varied; the law, --dt, --eps, --drag and --t-max apply)")
         r(self.disturbance != "none", "dist_amplitude", "needs --disturbance sin, random or "
@@ -140,6 +144,7 @@ class Options(V.Dask):
         r(not self.reference, "dt", "does not apply with --reference (solve_ivp chooses its "
           "steps)")
         r(not self.reference, "workers", "does not apply with --reference (it runs in-process)")
+        r(not self.reference, "kernel", "does not apply with --reference (solve_ivp per case)")
         r(not self.reference, "scheduler", "does not apply with --reference (it runs "
           "in-process)")
         r(self.dispersion is not None or self.disturbance == "random" or self.fig6, "seed",
@@ -189,7 +194,7 @@ class SimulateJob(Job):
         summ = campaign.summarize(res)
         summ["settings"] = settings_used(res, self.sim, reference=self.reference,
                                          **self.described)
-        cases = Stream(encoded=campaign.iter_case_json(res))
+        cases = Stream(encoded=campaign.CaseJson(res))
         figures = []
         if self.want_figures:
             progress.stage("figures")
@@ -199,7 +204,7 @@ class SimulateJob(Job):
         head = {"command": "simulate mars", **self.gains.to_dict()}
         files = {"summary.json": json_stream({**head, **summ}, indent=1),
                  "cases.json": json_stream({**head, "cases": Stream(
-                     encoded=campaign.iter_case_json(res))}),
+                     encoded=campaign.CaseJson(res))}),
                  "cases.csv": Stream(
                      write=lambda f: write_cases_csv(campaign.iter_case_records(res), f))}
         return Outcome({"summary": summ, "cases": cases},
@@ -268,6 +273,8 @@ def plan(opts: Options, system: Any) -> Job:
                                guidance_drag=opts.guidance_drag)
     if opts.method != "rk4":
         sim.update(method=opts.method, rtol=opts.rtol, atol=opts.atol, max_step=opts.max_step)
+    if opts.kernel != "scalar":
+        sim["kernel"] = opts.kernel
     if opts.reference:
         sim.pop("dt")
     executor: dict[str, Any] = {}
