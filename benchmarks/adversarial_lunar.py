@@ -16,7 +16,7 @@ random time in [0, t_end], or "none") with T_a in U(0, 1), and the saturation re
 
 Printed per method: the count per outcome (``lgw.sim.lunar.outcomes``), "unexplained" (a
 case whose recorded quantities contradict its outcome: "completed" before t_end, an outcome
-time outside [0, t_end], "surface_contact" with the end radius off R_MOON, "propellant_
+time outside [0, t_end], "crashed" with the end radius off R_MOON, "propellant_
 exhausted" with the end mass off m_dry, "step_limit" from RK4, ...), "impossible" (end mass
 <= 0, below m_dry or above m0; with the "commanded" reading of (24), a delivered thrust above
 T_max or above the failure factor times T_max at a saturated node (read "nominal", (24) does not
@@ -112,10 +112,10 @@ def audit(ctx, X0: np.ndarray, c: dict, method: str) -> dict[str, np.ndarray]:
         unexplained |= ~((t >= 0) & (t <= t_end * (1 + 1e-12)))
         unexplained |= (name == "completed") & ~(np.abs(t - t_end) <= 1e-9 * t_end)
         # at the located crossing (bisection to 2^-60 of the step on the interpolant: r is
-        # R_MOON to |r'| dt 2^-60 plus rounding; 16x that allowed), or below at t = 0
+        # R_MOON to |r'| dt 2^-60 plus rounding; 16x that allowed); below at t = 0 is named so
         tol_r = 1e-6 + 16 * np.abs(y[:, 5]) * o.dt * 2.0 ** -60
-        unexplained |= (name == "surface_contact") & ~(
-            (np.abs(y[:, 0] - P.R_MOON) <= tol_r) | ((t == 0) & (y[:, 0] < P.R_MOON)))
+        unexplained |= (name == "crashed") & ~(np.abs(y[:, 0] - P.R_MOON) <= tol_r)
+        unexplained |= (name == "below_surface") & ~((t == 0) & (y[:, 0] < P.R_MOON))
         unexplained |= (name == "propellant_exhausted") & ~(np.abs(y[:, 6] - o.m_dry)
                                                              <= 1e-9 * o.m_dry)
         unexplained |= (name == "quaternion_drift") & ~(

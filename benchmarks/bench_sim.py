@@ -5,7 +5,7 @@
     /work/venv/bin/python benchmarks/bench_sim.py --floor         # chattering floor vs dt
     /work/venv/bin/python benchmarks/bench_sim.py --dt-sweep      # accuracy, landing, speed vs dt
     /work/venv/bin/python benchmarks/bench_sim.py --tol-sweep     # the same for dopri5 vs rtol
-    /work/venv/bin/python benchmarks/bench_sim.py --before f010322   # kernel now vs at a commit
+    /work/venv/bin/python benchmarks/bench_sim.py --before e448ec4   # every system now vs a commit
 
 Measures, on Table II cases (seed 000, corrected law, default gains, physical drag):
   (a) a per-case scipy solve_ivp loop (RK45, rtol = atol = 1e-8, landing event) written as a
@@ -26,10 +26,16 @@ rate).
 --tol-sweep: for each tolerance, (c5)'s accuracy against (a) and against the tight LSODA
 reference (Table II, and Table III with the 50 kN limit), landed fraction, steps, cases/s.
 
---before COMMIT: the batch simulator of that commit (its sim/mars/batch.py, loaded from git into
-this process; it runs the same generated law) against the current one on the same Table II
-cases, RK4 and dopri5, best of --repeat runs each, interleaved: cases/s of both, the ratio
-now/before, and whether the per-case results are bitwise equal.
+--before COMMIT: the simulators of that commit (its theory/, sim/ and tuning/ from git, run in a
+worker process of their own with their own kernel cache) against this checkout's, on the same
+cases, one thread each, RK4 and dopri5, for each workload (--systems): mars Table II
+(--n-before cases), lunar Section 5 (/ 50), a lunar Monte Carlo campaign (lunar-campaign, / 50;
+RK4 at the converged step, and at 4x it in the dopri5 row: the campaign flies RK4 only), eros
+Monte Carlo offsets (/ 10) and the whole eros descent's last 20 s on the shape model
+(eros-descent, / 200, Monte Carlo dispersions); best CPU time of --repeat interleaved runs:
+cases/s of both, the ratio now/before, and whether the per-case results are bitwise equal.
+--now COMMIT takes "now" from a commit too (a run that stays valid while the checkout is
+edited).
 
 --dt-sweep: for each dt, (c)'s accuracy against (a) and against the tight LSODA reference
 (Table II, and Table III with the 50 kN limit), the fraction of Table II cases that meet the
@@ -40,8 +46,11 @@ fixed step stops meeting the targets, and what (c)/(a) = 1000 would require.
 from __future__ import annotations
 
 import argparse
+import hashlib
+import io
 import os
 import time
+from pathlib import Path
 
 import numpy as np
 from lgw.sim.mars.batch import simulate_batch
@@ -227,61 +236,194 @@ def million(g, kw: dict, label: str, n: int = 1_000_000, chunk: int = 100_000) -
           f"{'under' if full < 600 else 'OVER'} the 10-minute target")
 
 
-def load_before(commit: str):
-    """simulate_batch of sim/mars/batch.py at ``commit``, imported from a temporary file."""
-    import importlib.util
+# --- the kernels now against the kernels at a commit, in one run -----------------------------
+
+def before_tree(commit: str) -> Path:
+    """The package ``lgw`` as it was at ``commit`` (``git archive`` of theory/, sim/, tuning/
+    laid out as pyproject.toml maps them), in a temporary folder to put on PYTHONPATH."""
+    import subprocess
+    import tarfile
+    import tempfile
+
+    repo = Path(__file__).resolve().parents[1]
+    tmp = Path(tempfile.mkdtemp(prefix=f"lgw-before-{commit[:10]}-"))
+    tar = subprocess.run(["git", "archive", commit, "theory", "sim", "tuning"], cwd=repo,
+                         capture_output=True, check=True).stdout
+    src = tmp / "src"
+    src.mkdir()
+    with tarfile.open(fileobj=io.BytesIO(tar)) as tf:
+        tf.extractall(src, filter="data")
+    pkg = tmp / "pkg" / "lgw"
+    pkg.mkdir(parents=True)
+    for f in (src / "tuning" / "_root").iterdir():
+        (pkg / f.name).symlink_to(f)
+    for name, target in (("theory", "theory"), ("sim", "sim"), ("tuning", "tuning"),
+                         ("testing", "tuning/testing")):
+        (pkg / name).symlink_to(src / target)
+    return tmp
+
+
+def _digest(obj) -> str:
+    """sha256 of every numpy array of a result (attributes, or a dict's values), by name."""
+    h = hashlib.sha256()
+    d = obj if isinstance(obj, dict) else vars(obj)
+    for k in sorted(d):
+        v = d[k]
+        if isinstance(v, dict):
+            h.update(_digest(v).encode())
+        elif isinstance(v, np.ndarray):
+            h.update(k.encode())
+            h.update(np.ascontiguousarray(v).tobytes())
+    return h.hexdigest()[:16]
+
+
+SYSTEMS = ("mars", "lunar", "lunar-campaign", "eros", "eros-descent")
+
+
+def workload(system: str, method: str, n: int):
+    """A function running ``n`` cases of ``system`` with ``method`` on one thread, through
+    the public batch entry points every version of the simulators has."""
+    if system == "mars":
+        g = default_gains()
+        r0, v0, m0 = table2_states(n, seed=0)
+        return lambda: simulate_batch(r0, v0, m0, g, method=method, parallel=False)
+    if system == "lunar":
+        from lgw.sim.lunar.batch import simulate
+        from lgw.sim.lunar.scenario import section5_case
+
+        ctx, X0 = section5_case(n=n)
+        return lambda: simulate(ctx, X0, method=method, record=False, parallel=False).cases
+    if system == "lunar-campaign":
+        # a Monte Carlo campaign (failure time and level, initial state drawn), RK4 at the
+        # run options' converged step; dopri5 through the same kernel as "lunar" above
+        from dataclasses import replace
+
+        from lgw.sim.lunar import campaign as LC
+        from lgw.sim.lunar.closed_loop import RunOptions
+        from lgw.theory.lunar.gains import paper_gains
+
+        opts = RunOptions()
+        if method != "rk4":  # the campaign flies RK4 only: a coarser step as a second load
+            opts = replace(opts, dt=4 * opts.dt)
+        return lambda: LC.run(paper_gains(), opts, n, seed=0, check_cases=0)
+    if system == "eros-descent":
+        # the whole descent (shape model's gravity, probe, navigation error) from the
+        # profile's last 20 s, Monte Carlo dispersions
+        from dataclasses import replace
+
+        from lgw.sim.eros.descent import (
+            DescentOptions,
+            descent_gains,
+            dispersions,
+            simulate_descent,
+        )
+
+        d = dispersions(n, seed=0, pos=1.0, vel=0.01)
+        base = DescentOptions(method=method, stride=5)
+        opts = replace(base, t0=float(base.profile().t_touchdown - 20.0))
+        return lambda: simulate_descent(d["e0"], d["ed0"], descent_gains(), opts,
+                                        srp=d["srp"], case_phase=d["case_phase"],
+                                        nav_ids=d["nav_ids"], parallel=False)
+    from lgw.sim.eros.batch import SimOptions, simulate_kernel
+    from lgw.sim.eros.campaign import offsets
+    from lgw.theory.eros.gains import default_gains as eros_gains
+
+    e0, ed0, ph = offsets(n, seed=1)
+    opts = SimOptions(method=method)
+    return lambda: simulate_kernel(e0, ed0, eros_gains(), opts, ph, parallel=False)
+
+
+def worker() -> None:
+    """Serve timing requests on stdin (one JSON line each: system, method, n); answer on
+    stdout with the CPU and wall seconds of the run and a digest of its results."""
+    import json
+    import sys
+
+    import lgw
+    print(json.dumps({"lgw": lgw.__file__}), flush=True)
+    runs = {}
+    for line in sys.stdin:
+        req = json.loads(line)
+        key = (req["system"], req["method"], req["n"])
+        if key not in runs:
+            workload(req["system"], req["method"], 2)()  # compile or load from the cache
+            runs[key] = workload(*key)
+        c, t = time.process_time(), time.perf_counter()
+        res = runs[key]()
+        print(json.dumps({"cpu": time.process_time() - c, "wall": time.perf_counter() - t,
+                          "digest": _digest(res)}), flush=True)
+
+
+def before_after(commit: str, systems: list[str], n: int, repeat: int,
+                 now: str | None = None) -> None:
+    """The simulators now against ``commit``: two worker processes (this checkout, or the
+    tree of commit ``now``, and the tree of ``commit``), the same cases on one thread each,
+    runs interleaved, best CPU time of ``repeat``; the ratio now/before of the rates and
+    whether the results are bitwise equal.  A commit's kernels are compiled in a cache of
+    their own (cold: minutes)."""
+    import json
     import subprocess
     import sys
     import tempfile
-    from pathlib import Path
 
-    repo = Path(__file__).resolve().parents[1]
-    src = subprocess.run(["git", "show", f"{commit}:sim/mars/batch.py"], cwd=repo,
-                         capture_output=True, text=True, check=True).stdout
-    path = Path(tempfile.mkdtemp(prefix="lgw-before-")) / "batch_before.py"
-    path.write_text(src)
-    spec = importlib.util.spec_from_file_location("batch_before", path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules["batch_before"] = mod  # dataclasses look their module up
-    spec.loader.exec_module(mod)
-    return mod.simulate_batch
-
-
-def before_after(g, commit: str, n: int, repeat: int) -> None:
-    old = load_before(commit)
-    r0, v0, m0 = table2_states(n, seed=0)
-    for method in ("rk4", "dopri5"):
-        t = time.perf_counter()
-        old(r0[:2], v0[:2], m0[:2], g, method=method)
-        t_old_c = time.perf_counter() - t
-        t = time.perf_counter()
-        simulate_batch(r0[:2], v0[:2], m0[:2], g, method=method)
-        t_new_c = time.perf_counter() - t
-        best = {"before": np.inf, "now": np.inf}
-        res = {}
-        for _ in range(repeat):
-            for label, fn in (("before", old), ("now", simulate_batch)):
-                t = time.perf_counter()
-                res[label] = fn(r0, v0, m0, g, method=method)
-                best[label] = min(best[label], time.perf_counter() - t)
-        same = all(np.array_equal(getattr(res["before"], k), getattr(res["now"], k),
-                                  equal_nan=True) for k in ("landed", "landing_time", "r_land",
-                                                            "v_land", "fuel", "peak_thrust",
-                                                            "time_saturated", "min_altitude",
-                                                            "t_s1", "t_s2", "t_end", "y_end",
-                                                            "steps"))
-        print(f"{method}: {n} Table II cases, best of {repeat}: before ({commit}) "
-              f"{n / best['before']:.0f} cases/s, now {n / best['now']:.0f} cases/s, "
-              f"now/before = {best['before'] / best['now']:.2f}; results bitwise equal: "
-              f"{same}; first call (compile or cache load) before {t_old_c:.1f} s, "
-              f"now {t_new_c:.1f} s")
+    trees = {"before": before_tree(commit)}
+    if now is not None:
+        trees["now"] = before_tree(now)
+    procs = {}
+    for label in ("before", "now"):
+        # one thread everywhere (the campaigns run their chunks in the kernels' threads)
+        env = dict(os.environ, NUMBA_NUM_THREADS="1")
+        if label in trees:
+            env.update(PYTHONPATH=str(trees[label] / "pkg"),
+                       LGW_CACHE_DIR=str(trees[label] / "cache"))
+        elif "LGW_CACHE_DIR" not in os.environ:
+            env["LGW_CACHE_DIR"] = tempfile.mkdtemp(prefix="lgw-now-")
+        procs[label] = subprocess.Popen([sys.executable, __file__, "--worker"], env=env,
+                                        stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                        text=True)
+        print(f"{label}: lgw from {json.loads(procs[label].stdout.readline())['lgw']}")
+    sizes = {"mars": n, "lunar": max(1, n // 50), "lunar-campaign": max(1, n // 50),
+             "eros": max(1, n // 10), "eros-descent": max(1, n // 200)}
+    print(f"{'system':6} {'method':7} {'cases':>6} {'before /s':>10} {'now /s':>10} "
+          f"{'now/before':>10}  bitwise equal")
+    try:
+        for system in systems:
+            for method in ("rk4", "dopri5"):
+                req = json.dumps({"system": system, "method": method, "n": sizes[system]})
+                best = {"before": np.inf, "now": np.inf}
+                dig = {}
+                for _ in range(repeat):
+                    for label, p in procs.items():
+                        p.stdin.write(req + "\n")
+                        p.stdin.flush()
+                        ans = json.loads(p.stdout.readline())
+                        best[label] = min(best[label], ans["cpu"])
+                        dig[label] = ans["digest"]
+                m = sizes[system]
+                print(f"{system:6} {method:7} {m:6d} {m / best['before']:10.1f} "
+                      f"{m / best['now']:10.1f} {best['before'] / best['now']:10.3f}  "
+                      f"{dig['before'] == dig['now']}", flush=True)
+    finally:
+        for p in procs.values():
+            p.stdin.close()
+            p.wait()
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--n-batch", type=int, default=20_000)
-    ap.add_argument("--before", metavar="COMMIT", help="compare with the kernel at COMMIT")
+    ap.add_argument("--before", metavar="COMMIT",
+                    help="compare the simulators with those at COMMIT (rates and bitwise "
+                    "equality, in one run)")
+    ap.add_argument("--now", metavar="COMMIT", default=None,
+                    help="with --before: the simulators at COMMIT instead of this checkout")
+    ap.add_argument("--systems", nargs="+", choices=SYSTEMS, default=list(SYSTEMS),
+                    help="workloads for --before")
+    ap.add_argument("--n-before", type=int, default=2000,
+                    help="mars cases for --before (lunar and lunar-campaign / 50, eros / 10, "
+                         "eros-descent / 200)")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--n-ivp", type=int, default=8)
     ap.add_argument("--n-control", type=int, default=3)
     ap.add_argument("--n-numpy", type=int, default=2_000)
@@ -297,11 +439,14 @@ def main() -> None:
     ap.add_argument("--tol-sweep", action="store_true",
                     help="only the accuracy / landing / speed table of dopri5 against rtol")
     args = ap.parse_args()
+    if args.worker:
+        worker()
+        return
     g = default_gains()
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} "
           "(other processes share the cores: numbers are lower bounds)")
     if args.before:
-        before_after(g, args.before, args.n_batch, args.repeat)
+        before_after(args.before, args.systems, args.n_before, args.repeat, args.now)
         return
     if args.floor:
         chatter_floor(g)

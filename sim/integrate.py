@@ -61,6 +61,8 @@ from __future__ import annotations
 
 import inspect
 import math
+from collections.abc import Iterable
+from concurrent.futures import ThreadPoolExecutor
 
 import numba
 import numpy as np
@@ -161,205 +163,267 @@ def _herm_first_below(p0: float, d0: float, p1: float, d1: float, h: float,
     return b
 
 
+@numba.njit(error_model="numpy", cache=True)
+def _herm_first_under(p0: float, d0: float, p1: float, d1: float, h: float, level: float,
+                      a: float, b: float) -> float:
+    """The first th in [a, b] (within [0, 1]) where the cubic Hermite interpolant (``_herm``)
+    is strictly below ``level``, or 2.0 if there is none: the first crossing of a surface by a
+    component that need not be monotone over the step (a dip below the ground and back that
+    lies between the nodes).  The interval is cut at the roots of the cubic's derivative into
+    monotone pieces, the first piece that ends below the level is bisected (BISECT_ITERS);
+    the result is the bisection's upper end, a point where the interpolant is below the level.
+    """
+    if b < a:
+        return 2.0
+    if _herm(p0, d0, p1, d1, h, a) < level:
+        return a
+    # derivative: qa th^2 + qb th + qc (as _herm_min)
+    qa = 6.0 * p0 + 3.0 * h * d0 - 6.0 * p1 + 3.0 * h * d1
+    qb = -6.0 * p0 - 4.0 * h * d0 + 6.0 * p1 - 2.0 * h * d1
+    qc = h * d0
+    c1 = 2.0
+    c2 = 2.0
+    if qa == 0.0:
+        if qb != 0.0:
+            c1 = -qc / qb
+    else:
+        disc = qb * qb - 4.0 * qa * qc
+        if disc >= 0.0:
+            sq = math.sqrt(disc)
+            r1 = (-qb - sq) / (2.0 * qa)
+            r2 = (-qb + sq) / (2.0 * qa)
+            c1 = min(r1, r2)
+            c2 = max(r1, r2)
+    lo = a
+    for k in range(3):
+        hi = c1 if k == 0 else (c2 if k == 1 else b)
+        if not (a < hi < b) and k < 2:
+            continue
+        if hi <= lo:
+            continue
+        if _herm(p0, d0, p1, d1, h, hi) < level:
+            # the interpolant is monotone on [lo, hi], >= level at lo, < level at hi
+            x0 = lo
+            x1 = hi
+            for _ in range(BISECT_ITERS):
+                mid = 0.5 * (x0 + x1)
+                if _herm(p0, d0, p1, d1, h, mid) < level:
+                    x1 = mid
+                else:
+                    x0 = mid
+            return x1
+        lo = hi
+    return 2.0
+
+
 # --- templates (copied into each generated kernel module) --------------------------------
 
-def case(i, C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
-    """Case i from start to its end (template; the hooks are the generated module's).
-
-    A serial function called from the kernel's loop: with the inlined vector field in the
-    prange body itself the parallel compile took minutes."""
+def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
+    """Every case of a chunk, one after the other (template; the hooks are the generated
+    module's).  Parallelism is over pieces of a chunk, in threads (``run_chunk``): the kernel
+    is compiled once, serial and ``nogil``, for one loop-index type (numba's parfor lowering
+    compiled the per-case code a second time for an unsigned index, and its gufunc linked and
+    re-optimised the whole integrator again: about half of a cold build)."""
     method, dt, nsteps, rtol, atol, hmax, t_max, max_steps, ts, nsub, record = O
     nonfinite, t_end, y_end, nstep_out, steplim = G
-    Y = np.empty((3, NY))  # y, the stage input, the new node  # noqa: F821
-    # RK4: k1..k4 and y' at the new node (row 4); dopri5: k1..k6 and k7 = y' at the new node
-    K = np.empty((7, NY))  # noqa: F821
-    nst = 4 if method == 0 else 6  # rhs calls per step; the last one is at the new node
-    y = Y[0]
-    yt = Y[1]
-    yn = Y[2]
-    k1 = K[0]
-    k2 = K[1]
-    k3 = K[2]
-    k4 = K[3]
-    k1n = K[nst]
-    X = np.empty(NX)  # auxiliary outputs of the latest rhs call  # noqa: F821
-    XL = np.empty(NX)  # ... at the current node  # noqa: F821
-    S = np.empty(NS)  # the system's trackers  # noqa: F821
-    sys_init(i, C, Q, y, S)  # noqa: F821
-    ksamp = 0  # sampled data: the index of the latest sample
-    stop0 = False
-    if ts > 0.0:
-        stop0 = sys_sample(i, 0, 0.0, y, S, C, Q, R)  # the first held output  # noqa: F821
-    sys_rhs(0.0, Y, 0, K, 0, X, i, C, Q)  # y' and the auxiliary outputs at t = 0  # noqa: F821
-    for j in range(NX):  # noqa: F821
-        XL[j] = X[j]
-    done = sys_start(i, y, X, S, C, Q, R)  # noqa: F821
-    if stop0:
-        done = True
-    if record:
-        for j in range(NY):  # noqa: F821
-            rec_y[i, 0, j] = y[j]
-        for j in range(NX):  # noqa: F821
-            rec_x[i, 0, j] = XL[j]
-    t = 0.0
-    step = 0  # accepted steps
-    attempts = 0  # dopri5: accepted + rejected steps
-    stalled = False
-    rejected = False
-    bad = False
-    err_old = 1e-4
-    h_try = min(dt, hmax)
-    while True:
-        if done:
-            break
+    for i in range(G[1].shape[0]):
+        Y = np.empty((3, NY))  # y, the stage input, the new node  # noqa: F821
+        # RK4: k1..k4 and y' at the new node (row 4); dopri5: k1..k6 and k7 = y' at the new node
+        K = np.empty((7, NY))  # noqa: F821
+        nst = 4 if method == 0 else 6  # rhs calls per step; the last one is at the new node
+        y = Y[0]
+        yt = Y[1]
+        yn = Y[2]
+        k1 = K[0]
+        k2 = K[1]
+        k3 = K[2]
+        k4 = K[3]
+        k1n = K[nst]
+        X = np.empty(NX)  # auxiliary outputs of the latest rhs call  # noqa: F821
+        XL = np.empty(NX)  # ... at the current node  # noqa: F821
+        S = np.empty(NS)  # the system's trackers  # noqa: F821
+        sys_init(i, C, Q, y, S)  # noqa: F821
+        ksamp = 0  # sampled data: the index of the latest sample
+        stop0 = False
+        if ts > 0.0:
+            # the first held output (sample 0 as an int64, not a literal: one specialisation)
+            stop0 = sys_sample(i, np.int64(0), 0.0, y, S, C, Q, R)  # noqa: F821
+        t = 0.0
+        step = 0  # accepted steps
+        attempts = 0  # dopri5: accepted + rejected steps
+        stalled = False
+        rejected = False
+        bad = False
+        err_old = 1e-4
+        h_try = min(dt, hmax)
+        done = False
+        started = False
+        # y' and the auxiliary outputs at the node (t, y) are due: at t = 0, and at a sample
+        # instant once the controller has set its new output
+        at_node = True
+        h = 0.0
+        t_new = 0.0
         on_sample = False  # sampled data: this step ends at a sample instant
-        if method == 0:
-            if step >= nsteps:
-                break
-            h = dt
-            if ts > 0.0:
-                sub = step % nsub
-                on_sample = sub == nsub - 1
-                t_new = (ksamp + 1) * ts if on_sample else ksamp * ts + (sub + 1) * dt
-            else:
-                t_new = (step + 1) * dt
-        else:
-            rem = t_max - t
-            if rem <= 1e-12 * t_max:
-                break
-            if attempts >= max_steps:
-                stalled = True
-                break
-            if ts > 0.0:
-                t_smp = min((ksamp + 1) * ts, t_max)
-                rem = t_smp - t
-                on_sample = not h_try < rem * (1.0 - 1e-9)
-                h = rem if on_sample else h_try
-                t_new = t_smp if on_sample else t + h
-            else:
-                h = h_try if h_try < rem * (1.0 - 1e-9) else rem
-                t_new = t + h if h < rem else t_max
-        # RK4 or the Dormand-Prince stages.  The stages and the new node (whose derivative
-        # is the next step's k1) share one rhs call site: rhs is inlined, and four copies
-        # of it made the compile several times slower
-        finite = True
-        for stage in range(nst):
-            yr = 1
-            tst = t + 0.5 * h
-            if stage == nst - 1:
-                # the new node (its derivative is the next step's k1)
-                for j in range(NY):  # noqa: F821
-                    if method == 1:
-                        acc = 0.0
-                        for q in range(6):
-                            acc += DP_B[q] * K[q, j]
-                        yn[j] = y[j] + h * acc
-                    else:
-                        yn[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
-                    if not math.isfinite(yn[j]):
-                        finite = False
-                if not finite:
+        while True:
+            if not at_node:
+                if done:
                     break
-                yr = 2
-                tst = t_new
-            elif method == 1:
-                st = stage + 1
+                on_sample = False
+                if method == 0:
+                    if step >= nsteps:
+                        break
+                    h = dt
+                    if ts > 0.0:
+                        sub = step % nsub
+                        on_sample = sub == nsub - 1
+                        t_new = (ksamp + 1) * ts if on_sample else ksamp * ts + (sub + 1) * dt
+                    else:
+                        t_new = (step + 1) * dt
+                else:
+                    rem = t_max - t
+                    if rem <= 1e-12 * t_max:
+                        break
+                    if attempts >= max_steps:
+                        stalled = True
+                        break
+                    if ts > 0.0:
+                        t_smp = min((ksamp + 1) * ts, t_max)
+                        rem = t_smp - t
+                        on_sample = not h_try < rem * (1.0 - 1e-9)
+                        h = rem if on_sample else h_try
+                        t_new = t_smp if on_sample else t + h
+                    else:
+                        h = h_try if h_try < rem * (1.0 - 1e-9) else rem
+                        t_new = t + h if h < rem else t_max
+            # The node (stage -1: y' at (t, y) into K[0]) or the RK4 / Dormand-Prince stages of
+            # a step.  All of them, and the new node (whose derivative is the next step's k1),
+            # share one rhs call site: rhs is inlined, and its cost in numba's front end and in
+            # LLVM is per copy (four copies made the compile several times slower)
+            finite = True
+            for stage in range(-1 if at_node else 0, 0 if at_node else nst):
+                yr = 1
+                tst = t + 0.5 * h
+                if stage < 0:
+                    yr = 0
+                    tst = t
+                elif stage == nst - 1:
+                    # the new node (its derivative is the next step's k1)
+                    for j in range(NY):  # noqa: F821
+                        if method == 1:
+                            acc = 0.0
+                            for q in range(6):
+                                acc += DP_B[q] * K[q, j]
+                            yn[j] = y[j] + h * acc
+                        else:
+                            yn[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+                        if not math.isfinite(yn[j]):
+                            finite = False
+                    if not finite:
+                        break
+                    yr = 2
+                    tst = t_new
+                elif method == 1:
+                    st = stage + 1
+                    for j in range(NY):  # noqa: F821
+                        acc = 0.0
+                        for q in range(st):
+                            acc += DP_A[st, q] * K[q, j]
+                        yt[j] = y[j] + h * acc
+                    tst = t + DP_C[st] * h
+                elif stage == 0:
+                    for j in range(NY):  # noqa: F821
+                        yt[j] = y[j] + 0.5 * h * k1[j]
+                elif stage == 1:
+                    for j in range(NY):  # noqa: F821
+                        yt[j] = y[j] + 0.5 * h * k2[j]
+                else:
+                    for j in range(NY):  # noqa: F821
+                        yt[j] = y[j] + h * k3[j]
+                    tst = t + h
+                sys_rhs(tst, Y, yr, K, stage + 1, X, i, C, Q)  # noqa: F821
+            if at_node:
+                at_node = False
+                for j in range(NX):  # noqa: F821
+                    XL[j] = X[j]
+                if not started:  # t = 0
+                    started = True
+                    done = sys_start(i, y, X, S, C, Q, R)  # noqa: F821
+                    if stop0:
+                        done = True
+                if record:
+                    for j in range(NY):  # noqa: F821
+                        rec_y[i, step, j] = y[j]
+                    for j in range(NX):  # noqa: F821
+                        rec_x[i, step, j] = XL[j]
+                continue
+            if not finite:
+                bad = True
+                break
+            if method == 1:
+                # error control as in scipy's RK45 (Hairer, Norsett & Wanner II.4): RMS of
+                # h E.K / (atol + rtol max(|y|, |y_new|)); reject above 1, safety 0.9
+                attempts += 1
+                errn = 0.0
                 for j in range(NY):  # noqa: F821
                     acc = 0.0
-                    for q in range(st):
-                        acc += DP_A[st, q] * K[q, j]
-                    yt[j] = y[j] + h * acc
-                tst = t + DP_C[st] * h
-            elif stage == 0:
+                    for q in range(7):
+                        acc += DP_E[q] * K[q, j]
+                    sc = atol + rtol * max(abs(y[j]), abs(yn[j]))
+                    errn += (h * acc / sc) ** 2
+                errn = math.sqrt(errn / NY)  # noqa: F821
+                if not errn <= 1.0:  # NaN rejects too
+                    h_try = h * max(0.2, 0.9 * errn ** -0.2) if errn == errn else 0.2 * h
+                    rejected = True
+                    continue
+                # PI control (Hairer & Wanner's DOPRI5: beta = 0.04); no growth right after a
+                # rejection (as scipy's RK45)
+                fac = 0.9 * max(errn, 1e-10) ** (-0.2 + 0.75 * PI_BETA) * err_old ** PI_BETA
+                fac = min(PI_MAXFAC, max(0.2, fac))
+                if rejected:
+                    fac = min(fac, 1.0)
+                rejected = False
+                err_old = max(errn, 1e-4)
+                h_try = min(h * fac, hmax)
+            code, theta = sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R)  # noqa: F821
+            if code == STOP_INSIDE:
                 for j in range(NY):  # noqa: F821
-                    yt[j] = y[j] + 0.5 * h * k1[j]
-            elif stage == 1:
-                for j in range(NY):  # noqa: F821
-                    yt[j] = y[j] + 0.5 * h * k2[j]
-            else:
-                for j in range(NY):  # noqa: F821
-                    yt[j] = y[j] + h * k3[j]
-                tst = t + h
-            sys_rhs(tst, Y, yr, K, stage + 1, X, i, C, Q)  # noqa: F821
-        if not finite:
-            bad = True
-            break
-        if method == 1:
-            # error control as in scipy's RK45 (Hairer, Norsett & Wanner II.4): RMS of
-            # h E.K / (atol + rtol max(|y|, |y_new|)); reject above 1, safety 0.9
-            attempts += 1
-            errn = 0.0
+                    y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, theta)
+                t = t + theta * h
+                break
             for j in range(NY):  # noqa: F821
-                acc = 0.0
-                for q in range(7):
-                    acc += DP_E[q] * K[q, j]
-                sc = atol + rtol * max(abs(y[j]), abs(yn[j]))
-                errn += (h * acc / sc) ** 2
-            errn = math.sqrt(errn / NY)  # noqa: F821
-            if not errn <= 1.0:  # NaN rejects too
-                h_try = h * max(0.2, 0.9 * errn ** -0.2) if errn == errn else 0.2 * h
-                rejected = True
-                continue
-            # PI control (Hairer & Wanner's DOPRI5: beta = 0.04); no growth right after a
-            # rejection (as scipy's RK45)
-            fac = 0.9 * max(errn, 1e-10) ** (-0.2 + 0.75 * PI_BETA) * err_old ** PI_BETA
-            fac = min(PI_MAXFAC, max(0.2, fac))
-            if rejected:
-                fac = min(fac, 1.0)
-            rejected = False
-            err_old = max(errn, 1e-4)
-            h_try = min(h * fac, hmax)
-        code, theta = sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R)  # noqa: F821
-        if code == STOP_INSIDE:
-            for j in range(NY):  # noqa: F821
-                y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, theta)
-            t = t + theta * h
-            break
-        for j in range(NY):  # noqa: F821
-            y[j] = yn[j]
-            k1[j] = k1n[j]
-        for j in range(NX):  # noqa: F821
-            XL[j] = X[j]
-        t = t_new
-        step += 1
-        if on_sample and code != STOP_AT_NODE:
-            # sampled data: the controller reads y(t_k) and holds its new output
-            ksamp += 1
-            done = sys_sample(i, ksamp, t, y, S, C, Q, R)  # noqa: F821
-            sys_rhs(t, Y, 0, K, 0, X, i, C, Q)  # y' at t_k with the new output  # noqa: F821
+                y[j] = yn[j]
+                k1[j] = k1n[j]
             for j in range(NX):  # noqa: F821
                 XL[j] = X[j]
-        if record:
-            for j in range(NY):  # noqa: F821
-                rec_y[i, step, j] = y[j]
-            for j in range(NX):  # noqa: F821
-                rec_x[i, step, j] = XL[j]
-        if code == STOP_AT_NODE:
-            done = True
-    sys_finish(i, t, y, S, C, Q, R)  # noqa: F821
-    nonfinite[i] = bad
-    nstep_out[i] = step
-    steplim[i] = stalled
-    t_end[i] = t
-    for j in range(NY):  # noqa: F821
-        y_end[i, j] = yn[j] if bad else y[j]
-
-
-def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
-    """All cases of a chunk, in parallel over cases (numba.prange) or serially."""
-    for i in numba.prange(G[1].shape[0]):
-        case_fn(i, C, Q, R, O, G, rec_y, rec_x)  # noqa: F821
+            t = t_new
+            step += 1
+            if on_sample and code != STOP_AT_NODE:
+                # sampled data: the controller reads y(t_k) and holds its new output; then y'
+                # at t_k with it, and the record of the node (the next pass, at_node)
+                ksamp += 1
+                done = sys_sample(i, ksamp, t, y, S, C, Q, R)  # noqa: F821
+                at_node = True
+                continue
+            if record:
+                for j in range(NY):  # noqa: F821
+                    rec_y[i, step, j] = y[j]
+                for j in range(NX):  # noqa: F821
+                    rec_x[i, step, j] = XL[j]
+            if code == STOP_AT_NODE:
+                done = True
+        sys_finish(i, t, y, S, C, Q, R)  # noqa: F821
+        nonfinite[i] = bad
+        nstep_out[i] = step
+        steplim[i] = stalled
+        t_end[i] = t
+        for j in range(NY):  # noqa: F821
+            y_end[i, j] = yn[j] if bad else y[j]
 
 
 def template_source() -> str:
-    """The source of the templates, as written into each generated kernel module: ``case`` is
-    compiled as ``case_fn`` (serial, shared), ``kernel`` twice, as two functions of their own
-    (numba's cache index is per function and does not tell parallel=True from False):
-    ``kernel_parallel`` and ``kernel_serial``."""
-    k = inspect.getsource(kernel)
-    return "\n\n".join([inspect.getsource(case),
-                         k.replace("def kernel(", "def kernel_parallel(", 1),
-                         k.replace("def kernel(", "def kernel_serial(", 1)])
+    """The source of the template, as written into each generated kernel module (compiled
+    there as ``kernel``, ``KERNEL_FOOTER``)."""
+    return inspect.getsource(kernel)
 
 
 KERNEL_IMPORTS = (
@@ -367,15 +431,33 @@ KERNEL_IMPORTS = (
     "import numba",
     "import numpy as np",
     "from lgw.sim.integrate import (CONTINUE, DP_A, DP_B, DP_C, DP_E, PI_BETA, PI_MAXFAC,",
-    "    STOP_AT_NODE, STOP_INSIDE, _band, _herm, _herm_first_below, _herm_min)",
+    "    STOP_AT_NODE, STOP_INSIDE, _band, _herm, _herm_first_below, _herm_first_under,",
+    "    _herm_min)",
 )
 
 KERNEL_FOOTER = '''
-case_fn = numba.njit(case, error_model="numpy", cache=True)
-kernel_parallel = numba.njit(kernel_parallel, error_model="numpy", parallel=True, cache=True)
-# the same loop without threads, for executors (dask) that parallelise over chunks themselves
-kernel_serial = numba.njit(kernel_serial, error_model="numpy", parallel=False, cache=True)
+kernel = numba.njit(kernel, error_model="numpy", nogil=True, cache=True)
 '''
+
+# The hooks numba inlines into the kernel (its IR): those of every stage, step and sample.  As a
+# call, the vector field cost ~25 % of seed 000's run speed (the law's parameter-only terms are
+# no longer hoisted out of the step loop), and the step and sample hooks 7-48 % of seed 001's
+# and 002's (each call passes and unpacks the tuples C, Q, R: tens of arrays, reference counts
+# on each).  The hooks run once per case (init, start, finish) are compiled as functions of
+# their own: numba's front end is superlinear in a function's size, and they are a third of it.
+INLINED_HOOKS = ("sys_rhs", "sys_step", "sys_sample")
+
+
+def hook_jit(names: Iterable[str], cache: bool = False,
+             inline: Iterable[str] = ()) -> list[str]:
+    """The lines compiling a system's hooks in its generated module (``INLINED_HOOKS`` and
+    the system's helpers named in ``inline`` inlined, the others plain functions), for every
+    system alike.  cache=True for hooks in a module of their own that several kernels share
+    (``hooks_module_source``)."""
+    opts = ", cache=True" if cache else ""
+    inl = set(INLINED_HOOKS) | set(inline)
+    return [f"{n} = numba.njit({n}, error_model='numpy'{opts}"
+            + (", inline='always')" if n in inl else ")") for n in names]
 
 
 SAMPLE_STUB = '''
@@ -396,6 +478,15 @@ def kernel_module_source(header: str, system_source: str, sizes: dict[str, int])
     return "\n".join(["# generated by lgw.sim.integrate: do not edit (a cache entry)",
                       *KERNEL_IMPORTS, "", header, "", consts, "", system_source, stub, "",
                       template_source(), KERNEL_FOOTER])
+
+
+def hooks_module_source(system_source: str, sizes: dict[str, int]) -> str:
+    """A module of hooks that do not depend on what varies between a system's kernels (seed
+    000's law): compiled once, cached, and imported by each of its kernel modules, so that a
+    further kernel compiles only what differs (``lgw.sim.mars.kernel``)."""
+    consts = "\n".join(f"{k} = {int(v)}" for k, v in sizes.items())
+    return "\n".join(["# generated by lgw.sim.integrate: do not edit (a cache entry)",
+                      *KERNEL_IMPORTS, "", consts, "", system_source, ""])
 
 
 def integration_tuple(opt: IntegrationOptions, t_max: float,
@@ -421,6 +512,16 @@ def integration_tuple(opt: IntegrationOptions, t_max: float,
             float(opt.max_step), k * ts, int(opt.max_steps), ts, int(nsub), bool(opt.record))
 
 
+def kernel_args(args: tuple) -> tuple:
+    """The kernel's input tuple (C or Q) with every array C-contiguous and writable (a copy
+    only where one is not: a read-only view such as ``np.broadcast_to`` gives).  numba types
+    read-only and non-contiguous arrays apart, and each new type is another full build of
+    the kernel (a single Section 5 case of seed 001 passed read-only gains, a campaign
+    writable ones: two builds)."""
+    return tuple(np.array(a, order="C") if isinstance(a, np.ndarray)
+                 and not (a.flags.c_contiguous and a.flags.writeable) else a for a in args)
+
+
 def generic_outputs(n: int, ny: int) -> dict[str, np.ndarray]:
     """The per-case arrays the integrator writes: nonfinite, t_end, y_end, steps, step_limit."""
     return {"nonfinite": np.zeros(n, bool), "t_end": np.empty(n), "y_end": np.empty((n, ny)),
@@ -430,11 +531,53 @@ def generic_outputs(n: int, ny: int) -> dict[str, np.ndarray]:
 GENERIC_FIELDS = ("nonfinite", "t_end", "y_end", "steps", "step_limit")
 
 
+# Pieces per thread of a chunk (dynamic scheduling: a thread that finishes early takes the
+# next piece, so cases of uneven length, e.g. landing at different times, balance out).
+PIECES_PER_THREAD = 4
+_POOL: ThreadPoolExecutor | None = None
+
+
+def threads() -> int:
+    """Threads the kernels run in: numba's setting (``NUMBA_NUM_THREADS``, default the CPU
+    count), read without starting numba's threading layer."""
+    return max(1, int(numba.config.NUMBA_NUM_THREADS))
+
+
+def _pool(n: int) -> ThreadPoolExecutor:
+    global _POOL
+    if _POOL is None or _POOL._max_workers != n:
+        _POOL = ThreadPoolExecutor(n, thread_name_prefix="lgw-kernel")
+    return _POOL
+
+
 def run_chunk(kernel_fn, sl: slice, C: tuple, Q: tuple, R: tuple, O: tuple,  # noqa: N803
-              G: tuple, rec_y: np.ndarray, rec_x: np.ndarray) -> None:
+              G: tuple, rec_y: np.ndarray, rec_x: np.ndarray, parallel: bool = True) -> None:
     """Run cases ``sl`` (a slice of the first axis of C, R, G and, when recording, of the
-    records): the slices are views, so the results land in the full arrays."""
+    records): the slices are views, so the results land in the full arrays.
+
+    parallel=True cuts the chunk into pieces run by ``threads()`` threads (the kernel is
+    ``nogil``); parallel=False runs it in the calling thread (executors such as dask that
+    parallelise over chunks themselves).  Every case is integrated on its own, so the results
+    do not depend on the pieces or the threads."""
     record = O[-1]
-    kernel_fn(tuple(a[sl] for a in C), Q, tuple(a[sl] for a in R), O,
-              tuple(a[sl] for a in G), rec_y[sl] if record else rec_y,
-              rec_x[sl] if record else rec_x)
+
+    def piece(p: slice) -> None:
+        kernel_fn(tuple(a[p] for a in C), Q, tuple(a[p] for a in R), O,
+                  tuple(a[p] for a in G), rec_y[p] if record else rec_y,
+                  rec_x[p] if record else rec_x)
+
+    start, stop, _ = sl.indices(G[1].shape[0])
+    n = max(0, stop - start)
+    nt = min(threads(), n) if parallel else 1
+    if nt <= 1:
+        piece(slice(start, stop))
+        return
+    size = -(-n // (nt * PIECES_PER_THREAD))
+    futures = [_pool(nt).submit(piece, slice(a, min(a + size, stop)))
+               for a in range(start, stop, size)]
+    try:
+        for f in futures:
+            f.result()
+    finally:  # an error or an interrupt: pieces not started yet are dropped
+        for f in futures:
+            f.cancel()

@@ -16,9 +16,6 @@ import numpy as np
 from lgw.theory.errors import ParameterError
 
 METHODS = ("rk4", "dopri5")
-# "scalar": one case at a time (lgw.sim.integrate); "lanes": blocks of cases stepped together,
-# the law in SIMD across them (lgw.sim.lanes; systems that have a lane kernel)
-KERNELS = ("scalar", "lanes")
 STOP_MODES = ("landing", "t_max")
 LIMITS = ("axis", "norm")
 # The finest relative tolerance the double-precision error estimate can honour.
@@ -47,8 +44,6 @@ class IntegrationOptions:
       RK45's error control rtol, atol; dt is the first step, max_step caps the step, a case
       needing more than max_steps attempts stops flagged ``step_limit``).
     dt, max_step in s; record=True keeps the trajectory (needs rk4: the fixed step grid).
-    kernel: "scalar" (one case at a time) or "lanes" (a block of cases stepped together, the
-      law evaluated in SIMD across them: ``lgw.sim.lanes``; no recording).
     """
 
     method: str = "rk4"
@@ -58,14 +53,9 @@ class IntegrationOptions:
     max_step: float
     max_steps: int
     record: bool = False
-    kernel: str = "scalar"
 
     def __post_init__(self) -> None:
         _one_of("method", self.method, METHODS)
-        _one_of("kernel", self.kernel, KERNELS)
-        if self.kernel == "lanes" and self.record:
-            raise ParameterError("kernel", self.kernel, "cannot record trajectories (use "
-                                 "kernel='scalar' with record=True)")
         positive("dt", self.dt, "s")
         if self.method == "dopri5":
             positive("rtol", self.rtol, "relative tolerance")

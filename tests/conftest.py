@@ -1,8 +1,18 @@
 """Hypothesis profiles: ``ci`` (derandomized, loaded when CI=true), ``dev`` (default) and
-``thorough`` (randomized, many examples: ``pytest --hypothesis-profile=thorough``)."""
+``thorough`` (randomized, many examples: ``pytest --hypothesis-profile=thorough``).
+
+The session starts with ``lgw warmup``: every compiled kernel of every system is built (or
+loaded, when the kernel cache already has it) before the first test, in parallel processes
+(one per CPU, at most one per system), so that no test pays for numba and the cores work
+together on the one cold build.  ``LGW_TEST_WARMUP=0`` skips it (a test then builds what it
+needs on first use).  The cache is ``$LGW_CACHE_DIR`` (docs/sim.md: keep it between CI runs).
+"""
 
 import os
+import subprocess
+import sys
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 settings.register_profile("ci", derandomize=True, max_examples=30, deadline=None,
@@ -16,3 +26,27 @@ settings.load_profile("ci" if os.environ.get("CI", "").lower() == "true" else "d
 # Progress lines go to stderr, which click's CliRunner mixes into ``result.output``: the tests
 # read documents from stdout, and the progress tests set LGW_PROGRESS themselves.
 os.environ.setdefault("LGW_PROGRESS", "never")
+
+# The systems' warm-up, in this many groups run side by side (the cold build of mars, with a
+# kernel per law, is about as long as lunar's and eros's together).
+WARMUP_GROUPS = (("mars",), ("lunar", "eros"))
+
+
+@pytest.fixture(scope="session", autouse=True)
+def warm_kernels() -> None:
+    """``lgw warmup`` for every system before the first test (module docstring)."""
+    if os.environ.get("LGW_TEST_WARMUP", "1") == "0":
+        return
+    env = dict(os.environ, LGW_COMPILE_NOTICE="0", LGW_PROGRESS="never")
+    groups = WARMUP_GROUPS if (os.cpu_count() or 1) > 1 else (sum(WARMUP_GROUPS, ()),)
+    script = ("import sys\nfrom lgw.tuning.cli import main\n"
+              "for s in sys.argv[1:]:\n"
+              "    try:\n        main(['warmup', s])\n"
+              "    except SystemExit as e:\n"
+              "        if e.code:\n            raise\n")
+    procs = [subprocess.Popen([sys.executable, "-c", script, *g], env=env,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+             for g in groups]
+    failed = [(p.args[3:], out) for p in procs for out in [p.communicate()[0]] if p.returncode]
+    if failed:
+        pytest.exit(f"lgw warmup failed: {failed}", returncode=3)

@@ -11,7 +11,7 @@ list of differences.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
-from contextlib import AbstractContextManager
+from contextlib import AbstractContextManager, ExitStack, contextmanager
 from dataclasses import dataclass
 from typing import Any
 
@@ -70,3 +70,19 @@ def check_mutation(compute: Callable[[], Iterable[Any]], mutation: Mutation,
     if bad:
         raise AssertionError(f"mutation {mutation.name!r}: " + "; ".join(bad))
     return mutated
+
+
+@contextmanager
+def patched(clear: Callable[[], None], *patches: AbstractContextManager[Any]):
+    """The mutation ``patches`` (e.g. ``unittest.mock.patch.object``) in force, with the
+    system's caches cleared on the way in and out (``clear``: its claims module's
+    ``clear_caches``), so that every claim is derived afresh from the mutated objects and the
+    unmutated ones afterwards."""
+    clear()
+    try:
+        with ExitStack() as stack:
+            for p in patches:
+                stack.enter_context(p)
+            yield
+    finally:
+        clear()

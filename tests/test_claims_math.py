@@ -41,6 +41,14 @@ PROSE_ONLY: dict[str, dict[str, str]] = {
                  "issue 18)",
         "bounded-command-corrected": "formula not attached yet (theory/mars is outside the "
                                      "lunar/eros part of issue 18)",
+        # the paper's simulation statements (lgw.theory.mars.scenario_claims)
+        "part1-fuel": "fuel of simulated flights against the optimum: numbers",
+        "part1-collision": "altitudes of simulated flights: numbers",
+        "part1-stsmg": "outcome of the simulated (46) at the paper's gains: numbers",
+        "part1-faster": "landing time and fuel of simulated flights: numbers",
+        "part2-touchdown": "touchdown speeds of a simulated campaign: numbers",
+        "part2-bands": "surfaces of a simulated campaign against printed bands: numbers",
+        "part3-time": "landing times of a simulated campaign: numbers",
     },
     "lunar": {
         # Section 5 claims, built by lgw.sim.lunar.scenario (not in theory's list)

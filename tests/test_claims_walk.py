@@ -18,6 +18,7 @@ from lgw.theory.evidence import (
     Cited,
     Claim,
     Evidence,
+    FromClaim,
     Identity,
     Inequality,
     Search,
@@ -25,6 +26,7 @@ from lgw.theory.evidence import (
     Unproven,
     Witness,
     combine,
+    verdict_of,
 )
 
 
@@ -57,6 +59,11 @@ def walk(steps):
 def evidence_supports(ev: Evidence, status: str) -> str | None:
     """None if ``ev`` is the kind of evidence ``status`` needs, else why not.  Judged from the
     evidence's data directly, not from its ``status`` property."""
+    if isinstance(ev, FromClaim):  # a lemma's verdict carries over, never stronger
+        want = {"proved": "proved", "proved-given": "cited", "checked": "checked"}.get(
+            ev.claim.verdict, "unproven")
+        return None if status == want else f"claim {ev.claim.id} ({ev.claim.verdict}) " \
+                                           f"used as {status}"
     if status == "proved":
         if isinstance(ev, Identity):
             return None if sp.sympify(ev.residual) == 0 else "proved identity, nonzero residual"
@@ -82,7 +89,9 @@ def evidence_supports(ev: Evidence, status: str) -> str | None:
         w = ev.witness
         if not isinstance(w, Witness):
             return "refuted without a witness"
-        if not (w.margin < 0 and w.rechecked_margin is not None and w.rechecked_margin < 0
+        # a strict claim (x > 0) is violated by an exact 0 as well (Witness.strict)
+        neg = (lambda m: m <= 0) if getattr(w, "strict", False) else (lambda m: m < 0)
+        if not (neg(w.margin) and w.rechecked_margin is not None and neg(w.rechecked_margin)
                 and w.recheck_method):
             return "refuted by a witness not re-checked by an independent route"
         return None
@@ -105,24 +114,41 @@ _VERDICT_OF = {"refuted": "refuted", "unproven": "unproven", "checked": "checked
                "cited": "proved-given", "proved": "proved"}
 
 
-def expected_verdict(steps) -> str:
+def expected_verdict(steps, searches=()) -> str:
     """The combination rule written again here (independent of evidence.combine): a
-    conclusion that needs every step is as weak as its weakest step; no step, unproven."""
+    conclusion that needs every step is as weak as its weakest step; no step, unproven.  A
+    refuted falsification search refutes; searches that found nothing make an undecided
+    proof (unproven, or no steps) checked, and never weaken a proof."""
+    if any(s.status == "refuted" for s in searches):
+        return "refuted"
     st = {s.status for s in steps}
+    proof = "unproven"
     for s in _WEAKEST_FIRST:
         if s in st:
-            return _VERDICT_OF[s]
-    return "unproven"
+            proof = _VERDICT_OF[s]
+            break
+    if proof == "unproven" and searches:
+        sst = {s.status for s in searches}
+        if sst and sst <= {"checked", "proved", "cited"}:
+            return "checked"
+    return proof
 
 
 def check_claim(c: Claim) -> list[str]:
     problems = []
-    if c.verdict != expected_verdict(c.steps) or c.verdict != combine(c.steps):
-        problems.append(f"verdict {c.verdict} is not the combination "
-                        f"{expected_verdict(c.steps)}")
-    if not c.steps:
-        problems.append("no steps")
-    for s in walk(c.steps + c.remarks):
+    want = expected_verdict(c.steps, c.searches)
+    if c.verdict != want or c.verdict != verdict_of(c.steps, c.searches):
+        problems.append(f"verdict {c.verdict} is not the combination {want}")
+    if not c.searches and c.verdict != combine(c.steps):
+        problems.append("without searches the verdict must be the combination of the steps")
+    if not c.steps and not c.searches:
+        problems.append("no steps and no searches")
+    for s in c.searches:
+        if not isinstance(s.evidence, Search | Unproven):
+            problems.append(f"search {s.statement[:60]!r} is {s.evidence.kind} evidence")
+        elif isinstance(s.evidence, Search) and not (s.evidence.domain and s.evidence.budget):
+            problems.append(f"search {s.statement[:60]!r} states no domain or budget")
+    for s in walk(c.steps + c.remarks + c.searches):
         if not isinstance(s, Step):
             problems.append(f"not a Step: {s!r}")
             continue
@@ -158,11 +184,14 @@ def test_every_claim_walks(every_claim):
 def test_refuted_witnesses_reproduce(every_claim):
     """Every refuted claim's witness reproduces: the claim rebuilt from scratch (caches
     cleared) gives the same witness, point and margins."""
+    import lgw.theory.mars.bounded_claims as BC
     import lgw.theory.mars.claims as MC
+    import lgw.theory.mars.mss as MM
+    import lgw.theory.mars.searches as MS
     import lgw.theory.settling_proofs as SP
 
     before = {c.id: c.counterexample for _, c in every_claim if c.verdict == "refuted"}
-    for mod in (MC, SP):
+    for mod in (MC, SP, BC, MM, MS):
         for name in dir(mod):
             f = getattr(mod, name)
             if hasattr(f, "cache_clear"):

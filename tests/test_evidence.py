@@ -142,3 +142,55 @@ def test_witness_needs_both_margins():
     assert Search({"x": 1}, "m", 1, -1.0, {"x": 1}, counter=w).status == "refuted"
     assert Identity(sp.Integer(1), "m").status == "unproven"
     assert math.isfinite(w.to_dict()["margin"])
+
+
+def test_searches_refute_a_claim_but_never_weaken_its_proof():
+    """Falsification searches of a claim's statement: a confirmed counterexample refutes
+    whatever the proof steps say; a search that finds nothing leaves a proof as it is and
+    makes an undecided claim checked (and one below its tolerance leaves it unproven)."""
+    proof = prove_nonneg(p, "p > 0", strict=True)
+    gap = Step("gap", Unproven("no proof"))
+    clear = search_step("x <= 10", lambda pt: 10 - pt["x"], [{"x": 9.0}],
+                        domain={"x": [0, 9]}, method="grid", budget="one point")
+    below = search_step("x <= 8.99", lambda pt: 8.99 - pt["x"], [{"x": 9.0}],
+                        domain={"x": [0, 9]}, method="grid")  # not re-checked: unproven
+    wrong = search_step("x <= 5", lambda pt: 5 - pt["x"], [{"x": 9.0}], domain={"x": [0, 9]},
+                        method="grid", recheck=lambda pt: 5 - pt["x"], recheck_method="exact")
+    assert (clear.status, below.status, wrong.status) == ("checked", "unproven", "refuted")
+    assert clear.evidence.budget == "one point" and "one point" in clear.evidence.summary()
+    assert Claim("a", "(1)", "t", "p", "d", [proof], searches=[clear]).verdict == "proved"
+    assert Claim("a", "(1)", "t", "p", "d", [proof], searches=[below]).verdict == "proved"
+    c = Claim("a", "(1)", "t", "p", "d", [proof], searches=[clear, wrong])
+    assert c.verdict == "refuted" and c.counterexample.point == {"x": 9.0}
+    assert Claim("a", "(1)", "t", "p", "d", [gap], searches=[clear]).verdict == "checked"
+    assert Claim("a", "(1)", "t", "p", "d", [], searches=[clear]).verdict == "checked"
+    assert Claim("a", "(1)", "t", "p", "d", [gap], searches=[below]).verdict == "unproven"
+    assert Claim("a", "(1)", "t", "p", "d", []).verdict == "unproven"
+    assert c.to_dict()["searches"][1]["status"] == "refuted"
+
+
+def test_a_proved_given_lemma_carries_its_references():
+    hyp = prove_nonneg(p, "p > 0", strict=True)
+    lemma = Claim("l", "(1)", "t", "p", "d",
+                  [Step("cmp", Cited("Khalil, Lemma 3.4", "comparison", (hyp,)))])
+    user = Claim("u", "(2)", "t", "p", "d", [Step("uses l", FromClaim(lemma))])
+    assert user.verdict == "proved-given" and user.references == ["Khalil, Lemma 3.4"]
+    assert user.verdict_text() == "proved, given Khalil, Lemma 3.4"
+
+
+def test_the_witness_sampler_stays_inside_the_hypotheses():
+    """A residual that vanishes only for q > 1 is not refuted by a point with q > 1: the
+    sampler draws inside the stated ranges (a hypothesis 0 < q < 1 here)."""
+    import random
+
+    from lgw.theory.provers import _rational_point, identity_evidence
+
+    q = sp.Symbol("q", positive=True)
+    rng = random.Random(0)
+    for _ in range(200):
+        pt = _rational_point([q, x], rng, {q: (0.0, 1.0)})
+        assert 0 < pt[q] < 1 and pt[x] != 0
+    ev = identity_evidence(sp.Max(q - 1, 0) * x, ranges={q: (0.0, 1.0)}, simplified=x * 0 + 1)
+    assert ev.status == "unproven" and ev.point_witness is None
+    ev2 = identity_evidence(sp.Max(q - 1, 0) * x, ranges={q: (1.0, 3.0)}, simplified=x * 0 + 1)
+    assert ev2.status == "refuted" and float(sp.Rational(ev2.point_witness["q"])) > 1

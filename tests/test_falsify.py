@@ -74,12 +74,18 @@ def test_shrinking_keeps_margin_negative_and_simplifies():
 
 
 def test_unconfirmed_witness_does_not_refute():
-    """A violation the independent route does not reproduce leaves the claim ``checked``."""
+    """A violation the independent route does not reproduce does not refute; and a best
+    margin below the stated tolerance (0 here) is not "checked" either: it is ``unproven``
+    ("checked" needs the best margin to clear the tolerance)."""
     p = Problem("route-disagrees", BOX, _planted, lambda q: 1.0, route="abs",
                 recheck_method="always positive", relative=False)
     s = falsify(p, SMALL)
-    assert s.best_margin < 0 and s.status == "checked" and s.counter is not None
-    assert not s.counter.confirmed
+    assert s.best_margin < 0 and s.counter is not None and not s.counter.confirmed
+    assert s.tolerance == 0.0 and s.status == "unproven"
+    # the same evidence with a tolerance the margin clears is checked; one it does not, not
+    import dataclasses
+    assert dataclasses.replace(s, tolerance=-2 * s.best_margin).status == "checked"
+    assert dataclasses.replace(s, tolerance=-0.5 * s.best_margin).status == "unproven"
 
 
 def test_failures_are_counted_not_hidden():

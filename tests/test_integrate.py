@@ -52,12 +52,8 @@ def sys_finish(i, t, y, S, C, Q, R):
         t_event[i] = math.nan
 
 
-sys_init = numba.njit(sys_init, inline="always")
-sys_rhs = numba.njit(sys_rhs, inline="always")
-sys_start = numba.njit(sys_start, inline="always")
-sys_step = numba.njit(sys_step, inline="always")
-sys_finish = numba.njit(sys_finish, inline="always")
-'''
+''' + "\n".join(integrate.hook_jit(["sys_init", "sys_rhs", "sys_start", "sys_step",
+                                       "sys_finish"]))
 
 
 @pytest.fixture(scope="module")
@@ -82,10 +78,9 @@ def _run(mod, y0, A, *, level=0.0, stop=True, t_max=3.0, chunk=1000, parallel=Fa
     G = tuple(g[k] for k in integrate.GENERIC_FIELDS)  # noqa: N806
     shape = (n, O[2] + 1) if io.record else (1, 1)
     rec_y, rec_x = np.full(shape + (ny,), np.nan), np.full(shape + (1,), np.nan)
-    k = mod.kernel_parallel if parallel else mod.kernel_serial
-    executors.run_local(lambda sl: integrate.run_chunk(k, sl, (y0,), (A, level, stop),
-                                                       (t_event,), O, G, rec_y, rec_x),
-                        n, chunk)
+    executors.run_local(lambda sl: integrate.run_chunk(mod.kernel, sl, (y0,), (A, level, stop),
+                                                       (t_event,), O, G, rec_y, rec_x,
+                                                       parallel), n, chunk)
     return t_event, g, rec_y
 
 
@@ -115,11 +110,13 @@ def test_event_and_state_against_closed_form(kernels, method, tol):
         np.testing.assert_allclose(g2["y_end"][:, 0], np.cos(3.0 + phase), atol=10 * tol)
 
 
-def test_chunking_and_threads_do_not_change_results(kernels):
+def test_chunking_and_threads_do_not_change_results(kernels, monkeypatch):
     rng = np.random.default_rng(2)
     y0 = rng.normal(size=(37, 3))
     base = _run(kernels[3], y0, ROT, method="dopri5")
-    for kw in ({"chunk": 5}, {"chunk": 1}, {"parallel": True, "chunk": 7}):
+    monkeypatch.setattr(integrate, "threads", lambda: 3)  # pieces on 3 threads, any machine
+    for kw in ({"chunk": 5}, {"chunk": 1}, {"parallel": True, "chunk": 7},
+               {"parallel": True, "chunk": 37}):
         other = _run(kernels[3], y0, ROT, method="dopri5", **kw)
         np.testing.assert_array_equal(other[0], base[0])
         for k in integrate.GENERIC_FIELDS:
@@ -190,13 +187,8 @@ def sys_finish(i, t, y, S, C, Q, R):
     pass
 
 
-sys_init = numba.njit(sys_init, inline="always")
-sys_rhs = numba.njit(sys_rhs, inline="always")
-sys_sample = numba.njit(sys_sample, inline="always")
-sys_start = numba.njit(sys_start, inline="always")
-sys_step = numba.njit(sys_step, inline="always")
-sys_finish = numba.njit(sys_finish, inline="always")
-'''
+''' + "\n".join(integrate.hook_jit(["sys_init", "sys_rhs", "sys_sample", "sys_start",
+                                       "sys_step", "sys_finish"]))
 
 
 @pytest.fixture(scope="module")
@@ -220,8 +212,8 @@ def test_zero_order_hold_against_exact_recurrence(zoh_kernel, method, nsub):
     u_rec, t_rec = np.full((n, kk + 1), np.nan), np.full((n, kk + 1), np.nan)
     g = integrate.generic_outputs(n, 3)
     G = tuple(g[k] for k in integrate.GENERIC_FIELDS)  # noqa: N806
-    integrate.run_chunk(zoh_kernel.kernel_serial, slice(0, n), (y0,), (kp, kd), (u_rec, t_rec),
-                        O, G, np.empty((1, 1, 3)), np.empty((1, 1, 1)))
+    integrate.run_chunk(zoh_kernel.kernel, slice(0, n), (y0,), (kp, kd), (u_rec, t_rec),
+                        O, G, np.empty((1, 1, 3)), np.empty((1, 1, 1)), parallel=False)
     x, v = y0[:, 0].copy(), y0[:, 1].copy()
     u_ex = np.empty((n, kk + 1))
     for k in range(kk + 1):

@@ -220,3 +220,58 @@ def test_mathml_names_and_long_lines() -> None:
     assert block.count("<mtr>") == len(lines)
     assert sum(t.count(r"\beta") for t, _ in lines) == 12
     assert RM.split_lines(sp.Eq(x, y)) is None
+
+
+def _report_with_findings():
+    """A paper claim refuted by a re-checked witness, its workbench correction (proved), a
+    proved paper claim and a refuted workbench claim (not a finding of the paper)."""
+    from lgw.theory.provers import witness_step
+
+    claims, spec, secs = _small_report()
+    x = sp.Symbol("x", real=True)
+    bad = witness_step("x^2 <= |x| for every x", {"x": 2}, -2.0, "value at x = 2", -2.0,
+                       "exact arithmetic")
+    paper = Claim("printed", "(7)", "Printed bound", "x^2 <= |x|", "false for |x| > 1", [bad])
+    fix = Claim("printed-corrected", "(7)", "Corrected bound", "x^2 <= |x|",
+                "x^2 <= |x| for |x| <= 1", [prove_identity(x - x, "trivial")],
+                statement="workbench", corrects="printed")
+    own = Claim("own-law", "(8)", "A workbench law", "(not in the paper)", "d", [bad],
+                statement="workbench")
+    spec = ReportSpec(spec.title, spec.gain_rows, spec.warnings, spec.bound_labels,
+                      spec.columns, spec.bounds, spec.references, paper_title="A Paper Title")
+    return [*claims, paper, fix, own], spec, secs
+
+
+def test_findings_open_every_format_and_count_the_papers_statements(tmp_path: Path) -> None:
+    from lgw.theory.report import claims_json, findings, verdict_counts
+
+    claims, spec, secs = _report_with_findings()
+    cmd = {"printed": "lgw report test --claim printed --json"}
+    fs = findings(claims, cmd)
+    assert [f.id for f in fs] == ["printed"]  # the refuted workbench claim is no finding
+    assert fs[0].corrected_by == "printed-corrected" and fs[0].command == cmd["printed"]
+    assert "x = 2" in fs[0].witness and "exact arithmetic" in fs[0].witness
+    assert verdict_counts(claims)["refuted"] == 1 and verdict_counts(claims)["proved"] == 2
+    assert verdict_counts(claims, "workbench") == {"proved": 1, "proved-given": 0,
+                                                   "checked": 0, "unproven": 0, "refuted": 1}
+    html = render_html(claims, spec, secs, reproduce=cmd)
+    check_html(html, [c.id for c in claims])
+    head = html[:html.index("id='gains'")]
+    assert "id='findings'" in head and "A Paper Title" in head and cmd["printed"] in head
+    assert "href='#claim-printed-corrected'" in head  # the correction is linked
+    md = render_markdown(claims, spec, secs, reproduce=cmd)
+    assert md.index("## Findings") < md.index("## Gain set") and cmd["printed"] in md
+    assert "correcting printed" in md and "corrected by printed-corrected" in md
+    tex = render_latex(claims, spec, secs, reproduce=cmd)
+    assert tex.index("Findings") < tex.index(r"\section{Gain set}")
+    import json
+    doc = json.loads(claims_json(claims, cmd))
+    assert doc["verdicts"]["refuted"] == 1 and doc["verdicts_workbench"]["refuted"] == 1
+    assert doc["findings"][0]["id"] == "printed"
+    if shutil.which("pdflatex"):
+        (tmp_path / "report.tex").write_text(tex)
+        (tmp_path / "tiny.png").write_bytes(secs[0].figures[0].png)
+        res = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error",
+                              "report.tex"], cwd=tmp_path, capture_output=True, text=True,
+                             timeout=120)
+        assert res.returncode == 0, res.stdout[-3000:]

@@ -29,6 +29,17 @@ the evidence behind it.  The kinds, and the status each can give:
 Combination (a conclusion needs every step): refuted > unproven > checked > cited > proved,
 i.e. the weakest step decides.  A claim whose steps are proved except for cited lemmas is
 "proved, given [refs]" (verdict ``proved-given``).
+
+Falsification searches of a claim's statement itself (``Claim.searches``) are a second,
+independent route: a confirmed counterexample refutes the claim whatever its proof steps say;
+a search that finds none supports the claim as ``checked`` only where the proof steps do not
+decide it (they are unproven, or there are none).  A proof is never weakened by a search that
+found nothing, so fixing a law turns a refuted claim into a proved one, not a checked one.
+
+Whose statement: a claim judges either the paper's statement as printed (``statement =
+"paper"``, the default) or the workbench's own (``"workbench"``); a workbench claim that
+corrects a paper claim names it (``corrects``).  A printed formula is judged as printed and
+keeps its witness beside its correction.
 """
 
 from __future__ import annotations
@@ -81,6 +92,9 @@ class Witness:
     rechecked_margin: float | None = None
     recheck_method: str = ""
     seed: int | None = None
+    # the claim is strict (x > 0, "positive definite"): a margin of exactly 0 violates it too,
+    # so both margins <= 0 confirm (an exact 0 needs exact routes: no rounding can make it)
+    strict: bool = False
 
     def __getitem__(self, key: str) -> Any:
         """The point's coordinate ``key`` (a witness reads like the case it describes)."""
@@ -88,13 +102,19 @@ class Witness:
 
     @property
     def confirmed(self) -> bool:
+        if self.strict:
+            return (self.margin <= 0 and self.rechecked_margin is not None
+                    and self.rechecked_margin <= 0)
         return (self.margin < 0 and self.rechecked_margin is not None
                 and self.rechecked_margin < 0)
 
     def to_dict(self) -> dict[str, Any]:
-        return _jsonable({"point": dict(self.point), "margin": self.margin,
-                          "method": self.method, "rechecked_margin": self.rechecked_margin,
-                          "recheck_method": self.recheck_method, "seed": self.seed})
+        d = {"point": dict(self.point), "margin": self.margin, "method": self.method,
+             "rechecked_margin": self.rechecked_margin, "recheck_method": self.recheck_method,
+             "seed": self.seed}
+        if self.strict:  # only when set: the records of non-strict witnesses are unchanged
+            d["strict"] = True
+        return _jsonable(d)
 
 
 class Evidence:
@@ -230,6 +250,7 @@ class Search(Evidence):
     relative: bool = False  # best_margin relative to the bound
 
     tolerance: float = 0.0  # the margin a "checked" needs: best_margin >= -tolerance
+    budget: str = ""  # the budget as stated (population, generations, grid, ...); "" = evaluations
 
     def __post_init__(self) -> None:
         if self.evaluations < 1:
@@ -252,7 +273,8 @@ class Search(Evidence):
     def summary(self) -> str:
         kind = "relative margin" if self.relative else "margin"
         s = (f"{self.method}, {self.evaluations} evaluations over {dict(self.domain)} "
-             f"(seed {self.seed}): best {kind} {self.best_margin:.6g}")
+             f"(seed {self.seed}" + (f"; budget {self.budget}" if self.budget else "")
+             + f"): best {kind} {self.best_margin:.6g}")
         if self.tolerance:
             s += f" (tolerance {self.tolerance:.3g})"
         if self.status == "refuted":
@@ -266,7 +288,7 @@ class Search(Evidence):
                           "method": self.method, "evaluations": self.evaluations,
                           "best_margin": self.best_margin, "relative": self.relative,
                           "best_point": dict(self.best_point), "seed": self.seed,
-                          "tolerance": self.tolerance,
+                          "tolerance": self.tolerance, "budget": self.budget,
                           "witness": self.counter.to_dict() if self.counter else None})
 
 
@@ -383,6 +405,20 @@ def combine(steps: Iterable[Step]) -> str:
     return _TO_VERDICT[_weakest(s.status for s in steps)]
 
 
+def verdict_of(steps: Iterable[Step], searches: Iterable[Step] = ()) -> str:
+    """A claim's verdict from its proof ``steps`` and its falsification ``searches``: a
+    refuted search refutes; otherwise the steps decide (``combine``), except that where they
+    leave the claim unproven (or there are none) searches that found no violation make it
+    ``checked``."""
+    steps, searches = list(steps), list(searches)
+    if any(s.status == "refuted" for s in searches):
+        return "refuted"
+    proof = combine(steps)
+    if proof == "unproven" and searches and combine(searches) == "checked":
+        return "checked"
+    return proof
+
+
 SCOPES = ("all-gains", "gain-set", "scenario")
 STATEMENTS = ("paper", "workbench")
 
@@ -399,7 +435,11 @@ class Claim:
     summary counts and the findings page count these).  "workbench": a statement the
     workbench derives itself; when it corrects a paper statement, ``corrects`` is that paper
     claim's id, so a printed formula is judged as printed (refuted, with its witness) beside
-    its correction (proved)."""
+    its correction (proved).
+
+    ``searches``: falsification searches of the statement itself (see the module docstring):
+    a confirmed counterexample refutes the claim; otherwise they count only where the proof
+    steps do not decide it."""
 
     id: str
     equations: str
@@ -415,28 +455,31 @@ class Claim:
     derived_expr: sp.Basic | None = None
     statement: str = "paper"
     corrects: str | None = None
+    searches: tuple[Step, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "steps", tuple(self.steps))
         object.__setattr__(self, "remarks", tuple(self.remarks))
+        object.__setattr__(self, "searches", tuple(self.searches))
         if self.scope not in SCOPES:
             raise ValueError(f"claim {self.id}: scope must be one of {SCOPES}")
         if self.statement not in STATEMENTS:
             raise ValueError(f"claim {self.id}: statement must be one of {STATEMENTS}")
         if self.corrects is not None and self.statement != "workbench":
             raise ValueError(f"claim {self.id}: only a workbench statement corrects another")
-        for s in self.steps + self.remarks:
+        for s in self.steps + self.remarks + self.searches:
             if not isinstance(s, Step):
                 raise TypeError(f"claim {self.id}: steps must be Step objects")
 
     @property
     def verdict(self) -> str:
-        return combine(self.steps)
+        return verdict_of(self.steps, self.searches)
 
     @property
     def counterexample(self) -> Witness | None:
-        """The witness of the first refuted step (None unless the claim is refuted)."""
-        for s in self.steps:
+        """The witness of the first refuted search, else of the first refuted step (None
+        unless the claim is refuted)."""
+        for s in self.searches + self.steps:
             if s.status == "refuted":
                 return s.witness
         return None
@@ -452,6 +495,8 @@ class Claim:
                     if s.evidence.reference not in out:
                         out.append(s.evidence.reference)
                     walk(s.evidence.hypotheses)
+                elif isinstance(s.evidence, FromClaim) and s.status == "cited":
+                    out.extend(r for r in s.evidence.claim.references if r not in out)
         walk(self.steps)
         return out
 
@@ -468,6 +513,7 @@ class Claim:
             "scope": self.scope, "statement": self.statement, "corrects": self.corrects,
             "verdict": self.verdict, "verdict_text": self.verdict_text(),
             "steps": [s.to_dict() for s in self.steps],
+            "searches": [s.to_dict() for s in self.searches],
             "remarks": [s.to_dict() for s in self.remarks],
             "witness": ce.to_dict() if ce else None, "numbers": dict(self.numbers),
             "paper_expr": self.paper_expr, "derived_expr": self.derived_expr})

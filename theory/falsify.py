@@ -270,9 +270,13 @@ def falsify(problem: Problem, budget: Budget = Budget(),
         counter = Witness(point=p_w, margin=m_w, method=f"{problem.route}, shrunk",
                           rechecked_margin=m_re if math.isfinite(m_re) else None,
                           recheck_method=problem.recheck_method, seed=budget.seed)
+    spent = (f"population {npop} x {budget.maxiter} generations (at most) + "
+             f"{budget.local_evals} Nelder-Mead evaluations, stop below margin "
+             f"{budget.stop_below:g}" + (f"; {min(len(starts), npop)} known hard points in the "
+                                         "initial population" if len(starts) else ""))
     return Search(domain=domain, method=method, evaluations=f.n,
                   best_margin=m_best, best_point=p_best, seed=budget.seed, counter=counter,
-                  relative=problem.relative)
+                  relative=problem.relative, budget=spent)
 
 
 def _to_unit(problem: Problem, point: Mapping[str, float]) -> np.ndarray:

@@ -27,13 +27,27 @@ from lgw.theory.symbolic import LAMBDIFY_MODULES
 
 def _rational_point(symbols: Iterable[sp.Symbol], rng: random.Random,
                     ranges: Mapping[sp.Symbol, tuple[float, float]]) -> dict:
+    """An exact rational point with every coordinate strictly inside its range: ``ranges``
+    holds the hypotheses of the statement under test (e.g. 0 < q1 < 1 < q2), so a witness is
+    never drawn where the statement does not claim anything.  Symbols without a range: (0.1,
+    3) if positive, else (-3, 3) without 0."""
     pt = {}
     for s in symbols:
         lo, hi = ranges.get(s, (0.1, 3.0) if s.is_positive else (-3.0, 3.0))
-        pt[s] = sp.Rational(round(rng.uniform(lo, hi), 3)).limit_denominator(1000)
-        if pt[s] == 0:
-            pt[s] = sp.Rational(1, 7)
+        for _ in range(100):
+            x = sp.Rational(round(rng.uniform(lo, hi), 3)).limit_denominator(1000)
+            if lo < x < hi and x != 0:
+                break
+        else:  # a range narrower than the rounding: its midpoint, exactly
+            x = (sp.nsimplify(lo) + sp.nsimplify(hi)) / 2
+        pt[s] = x
     return pt
+
+
+def in_ranges(point: Mapping[sp.Symbol, Any], ranges: Mapping[sp.Symbol, tuple[float, float]]
+              ) -> bool:
+    """Every coordinate of ``point`` strictly inside its range (the hypotheses)."""
+    return all(lo < point[s] < hi for s, (lo, hi) in ranges.items() if s in point)
 
 
 def identity_evidence(expr: sp.Expr, *, method: str = "sympy.simplify", samples: int = 8,
@@ -41,7 +55,9 @@ def identity_evidence(expr: sp.Expr, *, method: str = "sympy.simplify", samples:
                       simplified: sp.Expr | None = None) -> Identity:
     """Evidence for ``expr == 0`` identically: the residual after ``sp.simplify`` (or the
     given ``simplified`` form); if it is not 0, a search for an exact rational point where it
-    is nonzero (evaluated at 30 digits and re-checked at 60): a refutation needs both."""
+    is nonzero (evaluated at 30 digits and re-checked at 60): a refutation needs both.
+    ``ranges``: the open interval of each symbol the statement's hypotheses allow (the
+    sampler draws only there)."""
     ranges = ranges or {}
     simp = sp.simplify(expr) if simplified is None else simplified
     if simp == 0:
@@ -306,7 +322,8 @@ def arb_enclosure(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[float, float]], *
 
 def prove_arb(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[float, float]], statement: str, *,
               strict: bool = False, splits: int = 0,
-              recheck: Callable[[Mapping[str, float]], float] | None = None) -> Step:
+              recheck: Callable[[Mapping[str, float]], float] | None = None,
+              recheck_method: str = "the numpy implementation of the same quantity") -> Step:
     """A step asserting ``expr >= 0`` (> 0 if strict) on ``box``, by an Arb enclosure (the
     box is kept).  If the enclosure lies wholly below 0 on a box that is a single point, the
     point is a witness; ``recheck`` (a different route, e.g. the numpy implementation the
@@ -317,8 +334,7 @@ def prove_arb(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[float, float]], state
     if hi < 0 and point:
         pt = {str(k): v[0] for k, v in box.items()}
         counter = Witness(pt, hi, "Arb enclosure at the point (upper end)",
-                          recheck(pt) if recheck else None,
-                          "the numpy implementation of the same quantity" if recheck else "")
+                          recheck(pt) if recheck else None, recheck_method if recheck else "")
     rel = _relation(expr, strict)
     return Step(statement, Inequality(expr, "arb", box={str(k): v for k, v in box.items()},
                                       lower=lo, strict=strict, counter=counter,
@@ -355,18 +371,23 @@ def search_step(statement: str, margin: Callable[[Mapping[str, Any]], float],
                 points: Iterable[Mapping[str, Any]], *, domain: Mapping[str, Any],
                 method: str, seed: int | None = None, relative: bool = False,
                 recheck: Callable[[Mapping[str, Any]], float] | None = None,
-                recheck_method: str = "") -> Step:
+                recheck_method: str = "", tolerance: float = 0.0, budget: str = "") -> Step:
     """A step that rests on a falsification search: ``checked`` with the best margin over the
-    stated domain and budget, or ``refuted`` when the best point has a negative margin that
-    ``recheck`` (an independent route) confirms."""
+    stated domain and budget (if it clears ``tolerance``), or ``refuted`` when the best point
+    has a negative margin that ``recheck`` (an independent route) confirms."""
     res = run_search(margin, points)
     counter = None
     if res.best_margin < 0:
-        counter = Witness(res.best_point, res.best_margin, method,
-                          float(recheck(res.best_point)) if recheck else None, recheck_method,
-                          seed)
+        rechecked, how = None, recheck_method
+        if recheck is not None:
+            try:
+                rechecked = float(recheck(res.best_point))
+            except (ArithmeticError, ValueError) as e:  # not evaluable in double precision
+                how = f"{recheck_method} (could not be evaluated: {type(e).__name__}: {e})"
+        counter = Witness(res.best_point, res.best_margin, method, rechecked, how, seed)
     return Step(statement, Search(dict(domain), method, res.evaluations, res.best_margin,
-                                  res.best_point, seed, counter, relative))
+                                  res.best_point, seed, counter, relative, tolerance,
+                                  budget or f"{res.evaluations} points, each evaluated once"))
 
 
 def witness_step(statement: str, point: Mapping[str, Any], margin: float, method: str,
@@ -376,4 +397,5 @@ def witness_step(statement: str, point: Mapping[str, Any], margin: float, method
     evidence: refuted iff both margins are negative."""
     w = Witness(dict(point), margin, method, rechecked, recheck_method)
     return Step(statement, Search(dict(domain or {k: "given" for k in point}), method, 1,
-                                  margin, dict(point), None, w))
+                                  margin, dict(point), None, w,
+                                  budget="one evaluation at the stated point"))

@@ -21,6 +21,12 @@ paper's simulations, and those judged for the report's gain set.  A coverage tab
 Figures are made above ``theory`` (they need simulation data) and arrive in ``Section``s as
 PNG bytes; ``theory`` only embeds them.
 
+Findings first: every report opens with the paper's title and a table of the paper's
+statements the workbench refutes, one line each with its witness and the command that
+reproduces it (``reproduce``: claim id -> command, given by the report layer).  Summary counts
+and the findings count the paper's statements; the workbench's own (its corrections, its own
+laws) are counted apart.  A workbench claim that corrects a paper claim links to it and back.
+
 Deterministic: the same inputs give the same bytes (no timestamps, fixed float formats, claims
 in a fixed order, counterexample searches seeded).
 """
@@ -28,6 +34,7 @@ in a fixed order, counterexample searches seeded).
 from __future__ import annotations
 
 import base64
+import dataclasses
 import html
 import json
 import re
@@ -43,6 +50,7 @@ from lgw.theory.evidence import (
     VERDICTS,
     Cited,
     Claim,
+    FromClaim,
     Identity,
     Inequality,
     Search,
@@ -65,6 +73,7 @@ class ReportSpec:
     bounds: dict[str, dict[str, float]]  # column -> key -> value
     references: tuple[str, ...]
     bounds_note: str = ""
+    paper_title: str = ""  # the paper's own title (the findings page opens with it)
 
 
 def lgw_version() -> str:
@@ -87,6 +96,9 @@ VERDICT_LEGEND = ("verdicts, strongest first: proved (every step proved by a pro
                   "proved-given (proved, given the cited published lemmas) / checked (rests on "
                   "a search that found no violation over a stated domain and budget) / "
                   "unproven / refuted (a counterexample, re-checked by an independent route)")
+SEARCHES_NOTE = ("Falsification searches of the statement itself (a re-checked counterexample "
+                 "refutes it; a search that finds none supports it only where the steps above "
+                 "do not decide it):")
 NOTATION = ("Notation in the formulas: the signed power |x|^q sgn(x) of the paper (sig(x, q) "
             "in the code) is written \u2308x\u230b^q; s1 = r per axis, and the axis subscript "
             "i is dropped in per-axis formulas.")
@@ -107,9 +119,74 @@ class CoverageRow:
             self.not_checkable
 
 
-def verdict_counts(claims: Sequence[Claim]) -> dict[str, int]:
-    """How many claims have each verdict (every verdict listed, strongest first)."""
-    return {v: sum(c.verdict == v for c in claims) for v in VERDICTS}
+def verdict_counts(claims: Sequence[Claim], statement: str | None = "paper") -> dict[str, int]:
+    """How many claims have each verdict (every verdict listed, strongest first), counting
+    the paper's statements (``statement="paper"``), the workbench's own (``"workbench"``) or
+    all (None)."""
+    mine = [c for c in claims if statement is None or c.statement == statement]
+    return {v: sum(c.verdict == v for c in mine) for v in VERDICTS}
+
+
+def _counts_text(claims: Sequence[Claim]) -> str:
+    paper, own = verdict_counts(claims), verdict_counts(claims, "workbench")
+    return ("the paper's statements: " + ", ".join(f"{v} {n}" for v, n in paper.items())
+            + "; the workbench's own (corrections and its own laws, not counted above): "
+            + ", ".join(f"{v} {n}" for v, n in own.items()) + ".")
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One refuted paper statement on the findings page."""
+
+    id: str
+    equations: str
+    statement: str
+    witness: str
+    command: str
+    corrected_by: str
+
+
+def witness_text(w: Witness, limit: int = 8) -> str:
+    """A witness in one line: its first ``limit`` coordinates (a mapping's entries inline),
+    the margin and the independent re-check."""
+    items = list(w.point.items())
+    pts = "; ".join(f"{k} = {_short(v)[:120]}" for k, v in items[:limit])
+    if len(items) > limit:
+        pts += f"; ... ({len(items) - limit} more)"
+    return ((pts + "; " if pts else "") + f"margin {fmt(w.margin)}, re-checked "
+            f"{fmt(w.rechecked_margin)} ({w.recheck_method})")
+
+
+def findings(claims: Sequence[Claim], reproduce: Mapping[str, str] | None = None
+             ) -> list[Finding]:
+    """The paper's statements the workbench refutes, in report order, with their witnesses,
+    the command that reproduces each and the workbench claim that corrects it."""
+    fixes = _corrections(claims)
+    out = []
+    for c in claims:
+        if c.statement != "paper" or c.verdict != "refuted":
+            continue
+        w = c.counterexample
+        out.append(Finding(c.id, c.equations, c.paper, witness_text(w) if w else "",
+                           (reproduce or {}).get(c.id, ""), ", ".join(fixes.get(c.id, ()))))
+    return out
+
+
+def _corrections(claims: Sequence[Claim]) -> dict[str, list[str]]:
+    out: dict[str, list[str]] = {}
+    for c in claims:
+        if c.corrects:
+            out.setdefault(c.corrects, []).append(c.id)
+    return out
+
+
+def _whose(c: Claim, fixes: Mapping[str, Sequence[str]]) -> str:
+    """Whose statement a claim judges, and its link to its correction or to what it corrects."""
+    if c.statement == "workbench":
+        return "the workbench's statement" + (f", correcting {c.corrects}" if c.corrects
+                                              else "")
+    return "the paper's statement" + (f", corrected by {', '.join(fixes[c.id])}"
+                                      if c.id in fixes else "")
 
 
 def _by_scope(claims: Sequence[Claim]) -> list[tuple[str, str, list[Claim]]]:
@@ -117,10 +194,14 @@ def _by_scope(claims: Sequence[Claim]) -> list[tuple[str, str, list[Claim]]]:
             if any(c.scope == sc for c in claims)]
 
 
-def claims_json(claims: Sequence[Claim]) -> str:
+def claims_json(claims: Sequence[Claim], reproduce: Mapping[str, str] | None = None) -> str:
     """Machine-readable claims: per claim its id, equations, the paper's and the derived
-    statement, scope, verdict, each step with its evidence kind and data, and the witness."""
+    statement, scope, verdict, each step with its evidence kind and data, and the witness;
+    the verdict counts of the paper's statements (``verdicts``) and of the workbench's own
+    (``verdicts_workbench``), and the findings (refuted paper statements)."""
     return json.dumps({"verdicts": verdict_counts(claims),
+                       "verdicts_workbench": verdict_counts(claims, "workbench"),
+                       "findings": [dataclasses.asdict(f) for f in findings(claims, reproduce)],
                        "claims": [c.to_dict() for c in claims]}, indent=1, sort_keys=True) + "\n"
 
 
@@ -191,18 +272,25 @@ def _evidence_view(ev: Any) -> _EvidenceView:
     if isinstance(ev, Search):
         kind = "relative margin" if ev.relative else "margin"
         rows = [("method", ev.method), ("evaluations", str(ev.evaluations)),
-                ("seed", _short(ev.seed)), (f"best {kind}", fmt(ev.best_margin))]
+                ("budget", ev.budget or f"{ev.evaluations} evaluations"),
+                ("seed", _short(ev.seed)), (f"best {kind}", fmt(ev.best_margin)),
+                ("tolerance", fmt(ev.tolerance)), ("status", ev.status)]
         rows += [(f"domain: {k}", _short(v)) for k, v in ev.domain.items()]
         rows += [(f"best point: {k}", _short(v)) for k, v in ev.best_point.items()]
         head = (f"search, {ev.evaluations} evaluations: best {kind} {ev.best_margin:.6g}"
-                + ("; counterexample re-checked" if ev.status == "refuted" else
-                   " (no violation found)"))
+                + {"refuted": "; counterexample re-checked",
+                   "checked": f" (clears the tolerance {ev.tolerance:g}: checked)",
+                   "unproven": f" (below the tolerance {ev.tolerance:g}, not re-checked into a "
+                               "counterexample: unproven)"}[ev.status])
         return _EvidenceView(head, rows=tuple(rows), witness=ev.counter)
     if isinstance(ev, Cited):
         return _EvidenceView(f"cited: {ev.result} [{ev.reference}]",
                              hypotheses=tuple(ev.hypotheses))
     if isinstance(ev, Unproven):
         return _EvidenceView(f"unproven: {ev.reason}")
+    if isinstance(ev, FromClaim):
+        return _EvidenceView(f"rests on claim {ev.claim.id} (verdict {ev.claim.verdict}; a "
+                             "refuted or unproven lemma leaves this step unproven)")
     return _EvidenceView(f"{ev.kind}: {ev.summary()}")  # pragma: no cover
 
 
@@ -279,13 +367,32 @@ def _md_sections(sections: Sequence[Section]) -> list[str]:
     return L
 
 
+def _md_findings(claims: Sequence[Claim], spec: ReportSpec,
+                 reproduce: Mapping[str, str] | None) -> list[str]:
+    fs = findings(claims, reproduce)
+    L = ["## Findings", "", f"Paper: *{spec.paper_title or spec.title}*.", "",
+         f"{len(fs)} of the paper's {sum(c.statement == 'paper' for c in claims)} statements "
+         "judged here are refuted, each by a witness re-checked by an independent route; "
+         "verdicts of " + _counts_text(claims), ""]
+    if fs:
+        L += _md_table(("claim", "equations", "the paper's statement", "witness",
+                        "reproduce", "corrected by"),
+                       [(f"[{f.id}](#{anchor(f.id)})", f.equations, f.statement, f.witness,
+                         f"`{f.command}`" if f.command else "-", f.corrected_by or "-")
+                        for f in fs])
+    return L
+
+
 def render_markdown(claims: list[Claim], spec: ReportSpec,
                     sections: Sequence[Section] = (), *,
-                    coverage: Sequence[CoverageRow] = ()) -> str:
+                    coverage: Sequence[CoverageRow] = (),
+                    reproduce: Mapping[str, str] | None = None) -> str:
     groups = _by_scope(claims)
-    toc = ["gain set", "bounds", "verdicts"] + [t for _, t, _ in groups]
+    fixes = _corrections(claims)
+    toc = ["findings", "gain set", "bounds", "verdicts"] + [t for _, t, _ in groups]
     toc += (["coverage of the paper"] if coverage else []) + [s.title for s in sections]
     L = [f"# {spec.title}: derivation report", "",
+         *_md_findings(claims, spec, reproduce), "",
          f"lgw {lgw_version()}.  Every statement below is derived from the guidance law itself "
          f"(SymPy) and checked; {VERDICT_LEGEND}.", "", NOTATION, "",
          "Contents: " + "; ".join(toc + ["references"]) + ".", "",
@@ -295,20 +402,22 @@ def render_markdown(claims: list[Claim], spec: ReportSpec,
         L += ["", f"> warning: {w}"]
     L += ["", "## Bounds for this gain set (per axis)", ""]
     L += _md_table(("bound", "unit", *spec.columns), _bound_rows(spec))
-    counts = verdict_counts(claims)
     L += ["", spec.bounds_note, "", "## Verdicts", "",
-          "Summary: " + ", ".join(f"{v} {n}" for v, n in counts.items()) + "."]
+          "Summary, " + _counts_text(claims)]
     for _, title, group in groups:
-        L += ["", f"### {title}", "", "| claim | equations | law | verdict |", "|---|---|---|---|"]
+        L += ["", f"### {title}", "", "| claim | equations | law | whose | verdict |",
+              "|---|---|---|---|---|"]
         L += [f"| <a id=\"{_summary_anchor(c.id)}\"></a>[{c.id}](#{anchor(c.id)}) | "
-              f"{_md_cell(c.equations)} | {c.law or '-'} | **{c.verdict}** |" for c in group]
+              f"{_md_cell(c.equations)} | {c.law or '-'} | {c.statement} | **{c.verdict}** |"
+              for c in group]
     for _, title, group in groups:
         L += ["", f"## {title}"]
         for c in group:
             paper, derived = _claim_formulas(c)
             L += ["", f"### {c.id}", "", f"<a id=\"{anchor(c.id)}\"></a>",
                   f"**{c.title}** — equations {c.equations}"
-                  + (f", law: {c.law}" if c.law else "") + f", scope: {c.scope} "
+                  + (f", law: {c.law}" if c.law else "") + f", scope: {c.scope}; "
+                  f"{_whose(c, fixes)} "
                   f"([back to the summary](#{_summary_anchor(c.id)}))", "",
                   f"- Paper: {c.paper}"]
             for e in paper:
@@ -318,9 +427,14 @@ def render_markdown(claims: list[Claim], spec: ReportSpec,
                 L += ["", *_md_math(e, "  ")]
             if paper and derived and _same(paper, derived):
                 L.append("  (the derived form is the printed one)")
-            L += [f"- Verdict: **{c.verdict_text()}**", "", "Steps:", ""]
+            L += [f"- Verdict: **{c.verdict_text()}**", "", "Steps:" if c.steps else
+                  "Steps: none (no proof; the searches below decide).", ""]
             for i, s in enumerate(c.steps, 1):
                 L += [*_md_step(s, str(i)), ""]
+            if c.searches:
+                L += [SEARCHES_NOTE, ""]
+                for i, s in enumerate(c.searches, 1):
+                    L += [*_md_step(s, f"S{i}"), ""]
             if c.remarks:
                 L += ["Remarks on the paper's own argument (not part of the verdict):", ""]
                 for i, s in enumerate(c.remarks, 1):
@@ -405,10 +519,31 @@ def _tex_label(claim_id: str) -> str:
     return anchor(claim_id).replace("-", ":")
 
 
+def _tex_findings(claims: Sequence[Claim], spec: ReportSpec,
+                  reproduce: Mapping[str, str] | None) -> list[str]:
+    fs = findings(claims, reproduce)
+    L = [r"\section*{Findings}", r"\noindent Paper: \emph{" + tex(spec.paper_title or spec.title)
+         + r"}.\par", tex(f"{len(fs)} of the paper's {sum(c.statement == 'paper' for c in claims)}"
+                          " statements judged here are refuted, each by a witness re-checked by "
+                          "an independent route; verdicts of " + _counts_text(claims)) + r"\par"]
+    if fs:
+        L += [r"{\scriptsize\begin{longtable}{p{2.2cm}p{1.6cm}p{3.6cm}p{5cm}p{2.6cm}}",
+              r"claim & equations & the paper's statement & witness & reproduce \\ \hline"]
+        L += [r"\hyperref[" + _tex_label(f.id) + "]{" + tex(f.id) + "}"
+              + (r" (corrected by " + tex(f.corrected_by) + ")" if f.corrected_by else "")
+              + " & " + " & ".join(tex(x) for x in (f.equations, f.statement, f.witness,
+                                                    f.command or "-")) + r" \\"
+              for f in fs]
+        L.append(r"\end{longtable}}")
+    return L
+
+
 def render_latex(claims: list[Claim], spec: ReportSpec,
                  sections: Sequence[Section] = (), *,
-                 coverage: Sequence[CoverageRow] = ()) -> str:
+                 coverage: Sequence[CoverageRow] = (),
+                 reproduce: Mapping[str, str] | None = None) -> str:
     groups = _by_scope(claims)
+    fixes = _corrections(claims)
     L = [r"\documentclass[10pt]{article}", r"\usepackage[margin=2cm]{geometry}",
          r"\usepackage[T1]{fontenc}", r"\usepackage{lmodern}", r"\usepackage{textcomp}",
          r"\usepackage{amsmath,amssymb}", r"\usepackage{longtable}", r"\usepackage{graphicx}",
@@ -416,6 +551,7 @@ def render_latex(claims: list[Claim], spec: ReportSpec,
          r"\setcounter{tocdepth}{2}", r"\sloppy", r"\begin{document}",
          r"\title{" + tex(spec.title) + ": derivation report}",
          r"\author{lgw " + tex(lgw_version()) + "}", r"\date{}", r"\maketitle",
+         *_tex_findings(claims, spec, reproduce),
          tex(f"{VERDICT_LEGEND}.") + r"\par", tex(NOTATION), r"\tableofcontents",
          r"\section{Gain set}", r"\begin{tabular}{ll}"]
     L += [tex(k) + " & " + tex(val) + r" \\" for k, val in spec.gain_rows]
@@ -424,16 +560,16 @@ def render_latex(claims: list[Claim], spec: ReportSpec,
           r"{\small\begin{longtable}{p{6.5cm}l" + "r" * len(spec.columns) + "}",
           "bound & unit & " + " & ".join(tex(c) for c in spec.columns) + r" \\ \hline"]
     L += [" & ".join(tex(x) for x in row) + r" \\" for row in _bound_rows(spec)]
-    counts = verdict_counts(claims)
     L += [r"\end{longtable}}", tex(spec.bounds_note), r"\section{Verdicts}",
-          tex("Summary: " + ", ".join(f"{v} {n}" for v, n in counts.items()) + ".")]
+          tex("Summary, " + _counts_text(claims))]
     for _, title, group in groups:
-        L += [r"\paragraph{" + tex(title) + "}", r"{\small\begin{longtable}{p{4.5cm}p{5cm}ll}",
-              r"claim & equations & law & verdict \\ \hline"]
+        L += [r"\paragraph{" + tex(title) + "}",
+              r"{\small\begin{longtable}{p{4.5cm}p{4.5cm}lll}",
+              r"claim & equations & law & whose & verdict \\ \hline"]
         L += [r"\hyperref[" + _tex_label(c.id) + "]{" + tex(c.id) + "}"
               + r"\label{" + _tex_label(c.id).replace("claim:", "sum:") + "} & "
-              + " & ".join(tex(x) for x in (c.equations, c.law or "-")) + r" & \textbf{"
-              + tex(c.verdict) + r"} \\" for c in group]
+              + " & ".join(tex(x) for x in (c.equations, c.law or "-", c.statement))
+              + r" & \textbf{" + tex(c.verdict) + r"} \\" for c in group]
         L.append(r"\end{longtable}}")
     for _, title, group in groups:
         L.append(r"\section{" + tex(title) + "}")
@@ -443,7 +579,7 @@ def render_latex(claims: list[Claim], spec: ReportSpec,
                   + _tex_label(c.id) + "}",
                   r"\noindent Equations " + tex(c.equations) + (", law: " + tex(c.law)
                                                                 if c.law else "")
-                  + ", scope: " + tex(c.scope) + r" (\hyperref["
+                  + ", scope: " + tex(c.scope) + "; " + tex(_whose(c, fixes)) + r" (\hyperref["
                   + _tex_label(c.id).replace("claim:", "sum:") + r"]{back to the summary})."
                   r"\par\medskip", r"\noindent\textbf{Paper (as printed):} " + tex(c.paper)]
             L += [_tex_math(e) for e in paper]
@@ -453,7 +589,15 @@ def render_latex(claims: list[Claim], spec: ReportSpec,
                   r"\begin{enumerate}"]
             for s in c.steps:
                 L += _tex_step(s)
+            if not c.steps:
+                L.append(r"\item " + tex("no proof steps: the searches below decide"))
             L.append(r"\end{enumerate}")
+            if c.searches:
+                L += [r"\paragraph{" + tex(SEARCHES_NOTE.rstrip(":")) + ".}",
+                      r"\begin{enumerate}"]
+                for s in c.searches:
+                    L += _tex_step(s)
+                L.append(r"\end{enumerate}")
             if c.remarks:
                 L += [r"\paragraph{Remarks on the paper's own argument (not part of the "
                       r"verdict).}", r"\begin{enumerate}"]
@@ -554,6 +698,8 @@ def _html_evidence(ev: Any, shown: tuple[sp.Basic, ...] = ()) -> str:
                      + "</ol>")
     if vw.witness is not None:
         parts.append("<p>witness:</p>" + _html_kv(_witness_rows(vw.witness)))
+    if isinstance(ev, FromClaim):
+        parts.append(f"<p><a href='#{anchor(ev.claim.id)}'>claim {_h(ev.claim.id)}</a></p>")
     return "".join(parts) + "</div>"
 
 
@@ -563,6 +709,16 @@ def _html_step(s: Step) -> str:
             + "".join(_html_math(e) for e in RM.exprs(s.expr))
             + f"<details><summary>evidence: {_h(kind)}</summary>"
             + _html_evidence(s.evidence, RM.exprs(s.expr)) + "</details></li>")
+
+
+def _html_whose(c: Claim, fixes: Mapping[str, Sequence[str]], ids: set[str]) -> str:
+    def link(x: str) -> str:
+        return f"<a href='#{anchor(x)}'>{_h(x)}</a>" if x in ids else _h(x)
+    if c.statement == "workbench":
+        return "the workbench's statement" + (f", correcting {link(c.corrects)}"
+                                              if c.corrects else "")
+    return "the paper's statement" + (", corrected by " + ", ".join(link(x) for x in fixes[c.id])
+                                      if c.id in fixes else "")
 
 
 def _img_src(png: bytes) -> str:
@@ -590,17 +746,40 @@ def _section_id(i: int) -> str:
     return f"sec-{i}"
 
 
+def _html_findings(claims: Sequence[Claim], spec: ReportSpec,
+                   reproduce: Mapping[str, str] | None) -> list[str]:
+    fs = findings(claims, reproduce)
+    L = ["<section id='findings'><h2>Findings</h2>",
+         f"<p>Paper: <i>{_h(spec.paper_title or spec.title)}</i>.</p>",
+         f"<p>{len(fs)} of the paper's {sum(c.statement == 'paper' for c in claims)} statements "
+         "judged here are refuted, each by a witness re-checked by an independent route; "
+         f"verdicts of {_h(_counts_text(claims))}</p>"]
+    if fs:
+        L.append("<table><tr><th>claim</th><th>equations</th><th>the paper's statement</th>"
+                 "<th>witness</th><th>reproduce</th><th>corrected by</th></tr>")
+        L += [f"<tr><td><a href='#{anchor(f.id)}'>{_h(f.id)}</a></td><td>{_h(f.equations)}</td>"
+              f"<td>{_h(f.statement)}</td><td>{_h(f.witness)}</td>"
+              f"<td><code>{_h(f.command or '-')}</code></td><td>"
+              + (", ".join(f"<a href='#{anchor(x)}'>{_h(x)}</a>"
+                           for x in f.corrected_by.split(", ")) if f.corrected_by else "-")
+              + "</td></tr>" for f in fs]
+        L.append("</table>")
+    return L + ["</section>"]
+
+
 def render_html(claims: list[Claim], spec: ReportSpec,
                 sections: Sequence[Section] = (), *,
-                coverage: Sequence[CoverageRow] = (), asset_dir: Path | None = None) -> str:
+                coverage: Sequence[CoverageRow] = (), asset_dir: Path | None = None,
+                reproduce: Mapping[str, str] | None = None) -> str:
     """One self-contained HTML page (no external reference; figures embedded).
 
     ``asset_dir``: where a ``Section.image`` file is read from (figures given as
     ``Section.figures`` carry their bytes)."""
     groups = _by_scope(claims)
+    fixes = _corrections(claims)
     ids = {c.id for c in claims}
-    toc = [("gains", "Gain set"), ("bounds", "Bounds for this gain set"),
-           ("verdicts", "Verdict summary")]
+    toc = [("findings", "Findings"), ("gains", "Gain set"),
+           ("bounds", "Bounds for this gain set"), ("verdicts", "Verdict summary")]
     toc += [(f"scope-{sc}", title) for sc, title, _ in groups]
     toc += [("coverage", "Coverage of the paper")] if coverage else []
     toc += [(_section_id(i), s.title) for i, s in enumerate(sections)]
@@ -610,6 +789,7 @@ def render_html(claims: list[Claim], spec: ReportSpec,
          f"<title>{_h(spec.title)}: derivation report</title>",
          f"<style>{_CSS}</style><script>{_JS}</script></head><body>",
          f"<h1>{_h(spec.title)}: derivation report</h1>",
+         *_html_findings(claims, spec, reproduce),
          f"<p class='meta'>lgw {_h(lgw_version())}. {_h(VERDICT_LEGEND)}.</p>",
          f"<p class='meta'>{_h(NOTATION)}</p>",
          "<nav class='toc'><b>Contents</b><ol>"
@@ -624,16 +804,19 @@ def render_html(claims: list[Claim], spec: ReportSpec,
         L.append(f"<tr><td>{_h(row[0])}</td><td>{_h(row[1])}</td>"
                  + "".join(f"<td class='num'>{_h(x)}</td>" for x in row[2:]) + "</tr>")
     L.append("</table>" + (f"<p>{_h(spec.bounds_note)}</p>" if spec.bounds_note else ""))
-    counts = verdict_counts(claims)
-    L.append("<section id='verdicts'><h2>Verdict summary</h2><p>"
+    counts, own = verdict_counts(claims), verdict_counts(claims, "workbench")
+    L.append("<section id='verdicts'><h2>Verdict summary</h2><p>The paper's statements: "
              + ", ".join(f"<span class='{v}'>{v}</span> {n}" for v, n in counts.items())
+             + ".  The workbench's own (corrections and its own laws, not counted above): "
+             + ", ".join(f"<span class='{v}'>{v}</span> {n}" for v, n in own.items())
              + ".</p>")
     for _sc, title, group in groups:
         L.append(f"<h3>{_h(title)}</h3><table><tr><th>claim</th><th>title</th>"
-                 "<th>equations</th><th>law</th><th>verdict</th></tr>")
+                 "<th>equations</th><th>law</th><th>whose</th><th>verdict</th></tr>")
         L += [f"<tr id='{_summary_anchor(c.id)}'><td><a href='#{anchor(c.id)}'>{_h(c.id)}</a>"
               f"</td><td>{_h(c.title)}</td><td>{_h(c.equations)}</td><td>{_h(c.law or '-')}"
-              f"</td><td class='{c.verdict}'>{_h(c.verdict)}</td></tr>" for c in group]
+              f"</td><td>{_h(c.statement)}</td>"
+              f"<td class='{c.verdict}'>{_h(c.verdict)}</td></tr>" for c in group]
         L.append("</table>")
     L.append("</section>")
     for sc, title, group in groups:
@@ -643,7 +826,8 @@ def render_html(claims: list[Claim], spec: ReportSpec,
             L += [f"<section class='claim' id='{anchor(c.id)}'>",
                   f"<h3>{_h(c.id)}: {_h(c.title)}</h3>",
                   f"<p class='meta'>equations {_h(c.equations)}"
-                  + (f"; law: {_h(c.law)}" if c.law else "") + f"; scope: {_h(c.scope)}. "
+                  + (f"; law: {_h(c.law)}" if c.law else "") + f"; scope: {_h(c.scope)}; "
+                  + _html_whose(c, fixes, ids) + ". "
                   f"<a class='back' href='#{_summary_anchor(c.id)}'>back to the summary</a></p>",
                   "<table class='forms'><tr><th>the paper (as printed)</th>"
                   f"<td>{_h(c.paper)}" + "".join(_html_math(e) for e in paper) + "</td></tr>"
@@ -655,7 +839,12 @@ def render_html(claims: list[Claim], spec: ReportSpec,
                   f"<p><b>Verdict:</b> <span class='{c.verdict}'>{_h(c.verdict_text())}</span>"
                   "</p><ol>"]
             L += [_html_step(s) for s in c.steps]
+            if not c.steps:
+                L.append("<li>no proof steps: the searches below decide</li>")
             L.append("</ol>")
+            if c.searches:
+                L.append(f"<p>{_h(SEARCHES_NOTE)}</p><ol>"
+                         + "".join(_html_step(s) for s in c.searches) + "</ol>")
             if c.remarks:
                 L.append("<p>Remarks on the paper's own argument (not part of the verdict):</p>"
                          "<ol>" + "".join(_html_step(s) for s in c.remarks) + "</ol>")

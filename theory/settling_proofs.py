@@ -22,6 +22,7 @@ from lgw.theory.provers import (
     prove_z3,
     witness_step,
 )
+from lgw.theory.symbolic import sig
 
 V, V0, t, u = sp.symbols("V V_0 t u", positive=True)
 a, b, k, eta = sp.symbols("a b k eta", positive=True)
@@ -29,6 +30,14 @@ e1, e2 = sp.symbols("epsilon_1 epsilon_2", positive=True)  # 1 - p k, g k - 1
 theta = sp.Symbol("theta", positive=True)
 p_sym = (1 - e1) / k
 g_sym = (1 + e2) / k
+# The hypotheses as sampling ranges for a witness (pk = 1 - e1 in (0, 1), 0 < theta < 1): an
+# identity that fails is refuted only at a point where the lemma claims it.
+HYPOTHESES = {e1: (0.0, 1.0), theta: (0.0, 1.0)}
+
+
+def _identity(expr: sp.Expr, statement: str) -> Step:
+    """``prove_identity`` with the witness sampler kept inside ``HYPOTHESES``."""
+    return prove_identity(expr, statement, ranges=HYPOTHESES)
 
 
 def polyakov_expr(a_, b_, p_, g_, k_) -> sp.Expr:
@@ -66,7 +75,8 @@ INVARIANCE = "H. K. Khalil, Nonlinear Systems, 3rd ed., Sec. 4.8 (a sublevel set
 def _integral_step(integrand, lo, hi, expected, statement) -> Step:
     val = sp.integrate(integrand, (V, lo, hi), conds="none")
     return Step(statement, identity_evidence(sp.simplify(val - expected),
-                                             method="sympy.integrate, then sympy.simplify"),
+                                             method="sympy.integrate, then sympy.simplify",
+                                             ranges=HYPOTHESES),
                 sp.Eq(sp.Integral(integrand, (V, lo, hi)), expected, evaluate=False))
 
 
@@ -156,10 +166,10 @@ def _substitution_steps() -> tuple[Step, ...]:
     sub2 = _log_ratio(c * Vt**d, t)
     sub3 = _log_ratio(sp.diff(Vt, t) * Vt ** (-k * p_), c ** (-m) * t ** (m - 1) / d)
     return (
-        prove_identity(sp.powsimp(sub1, force=True),
+        _identity(sp.powsimp(sub1, force=True),
                        "a V^p + b V^g = a V^p (1 + c V^d), c = b/a, d = g - p"),
-        prove_identity(sub2, "with V = (t/c)^(1/d): c V^d = t (log form)"),
-        prove_identity(sub3, "(dV/dt) V^(-kp) = c^(-m) t^(m-1)/d, m = (1-kp)/d; hence "
+        _identity(sub2, "with V = (t/c)^(1/d): c V^d = t (log form)"),
+        _identity(sub3, "(dV/dt) V^(-kp) = c^(-m) t^(m-1)/d, m = (1-kp)/d; hence "
                        "dV/(aV^p+bV^g)^k = a^-k c^-m/d * t^(m-1) (1+t)^-k dt (log form)"),
     )
 
@@ -174,9 +184,9 @@ def exact_bound_claim() -> Claim:
     beta_int = sp.integrate(t ** (mm - 1) * (1 + t) ** (-kk), (t, 0, sp.oo), conds="none")
     steps = [
         *_substitution_steps(),
-        prove_identity(beta_int - sp.gamma(mm) * sp.gamma(kk - mm) / sp.gamma(kk),
+        _identity(beta_int - sp.gamma(mm) * sp.gamma(kk - mm) / sp.gamma(kk),
                        "int_0^oo t^(m-1) (1+t)^-k dt = Gamma(m) Gamma(k-m)/Gamma(k)  (0 < m < k)"),
-        prove_identity(sp.simplify(a ** (-k) * c ** (-m) / d * sp.gamma(m) * sp.gamma(k - m)
+        _identity(sp.simplify(a ** (-k) * c ** (-m) / d * sp.gamma(m) * sp.gamma(k - m)
                                    / sp.gamma(k) - exact_expr(a, b, p_, g_, k)),
                        "a^-k c^-m B(m, k-m)/d equals the closed form T*; k - m = (kg-1)/d"),
         # T* <= (3): SymPy's assumptions answer None on the closed forms (unproven); the
@@ -189,7 +199,7 @@ def exact_bound_claim() -> Claim:
                  "(not stated; the paper uses (3))",
                  "T* = Gamma(m_p) Gamma(m_g) (a/b)^m_p / (a^k Gamma(k) (g-p)), "
                  "m_p = (1-kp)/(g-p), m_g = (kg-1)/(g-p); attained as V0 -> oo by "
-                 "V' = -(aV^p+bV^g)^k; T* <= (3).", steps,
+                 "V' = -(aV^p+bV^g)^k; T* <= (3).", steps, statement="workbench",
                  remarks=(prove_nonneg(polyakov_expr(a, b, p_, g_, k) - exact_expr(a, b, p_, g_, k),
                                        "T* <= (3) directly on the closed forms (SymPy "
                                        "assumptions; None is unproven, so the proof goes "
@@ -210,7 +220,7 @@ def exact_time_claim() -> Claim:
     res = _log_ratio(lhs, rhs)
     steps = [
         *_substitution_steps(),
-        prove_identity(res, "t = u/(1-u) maps t^(m-1)(1+t)^-k dt to u^(m-1)(1-u)^(k-m-1) du, "
+        _identity(res, "t = u/(1-u) maps t^(m-1)(1+t)^-k dt to u^(m-1)(1-u)^(k-m-1) du, "
                        "u0 = t0/(1+t0), t0 = c V0^d (log form)"),
     ]
     return Claim("exact-time", "(16), not in the paper",
@@ -219,25 +229,54 @@ def exact_time_claim() -> Claim:
                  "T(V0) = T* I_u0(m_p, m_g), u0 = c V0^d/(1 + c V0^d), I the regularised "
                  "incomplete Beta function; for the reaching law (16) take V = |s1|, "
                  "(a, b, p, g) = (beta1, beta2, q1, q2), k = 1.  The numeric implementation is "
-                 "cross-checked against quadrature and an ODE solve in tests.", steps)
+                 "cross-checked against quadrature and an ODE solve in tests.", steps,
+                 statement="workbench")
 
 
-def theorem1_counterexample() -> tuple[float, float]:
-    """Seed 000, Theorem 1's counterexample system x' = -sig(x,1/2) - sig(x,2) + 1: its
-    equilibrium x* > 0, the root of sqrt(x) + x^2 = 1, by two routes: exact (y = sqrt(x) is
-    the positive real root of y^4 + y - 1, a SymPy CRootOf evaluated at 30 digits, squared)
-    and bracketing (scipy brentq on sqrt(x) + x^2 - 1 over [0, 1])."""
+# Theorem 1's counterexample system, seed 000 (1) with f(x) = -sig(x,1/2) - sig(x,2) + 1, and
+# the constants of (4) it satisfies with V = |x|.
+X_CE = sp.Symbol("x", real=True)
+CE_SYSTEM = -sig(X_CE, sp.Rational(1, 2)) - sig(X_CE, 2) + 1
+CE_CONSTANTS = {"a": sp.Integer(1), "b": sp.Integer(1), "p": sp.Rational(1, 2),
+                "g": sp.Integer(2), "k": sp.Integer(1), "eta": sp.Integer(1)}
+
+
+def theorem1_counterexample(f: sp.Expr = CE_SYSTEM) -> tuple[float, float]:
+    """The positive equilibrium x* of x' = f(x) (seed 000 Theorem 1's counterexample system
+    by default), by two routes: exact (with x = y^2, y > 0, f(y^2) is a polynomial in y; its
+    positive real roots by SymPy, at 30 digits, squared) and bracketing (scipy brentq on f
+    over [0, 1], evaluated in floating point)."""
     from scipy.optimize import brentq
 
     y = sp.Symbol("y", positive=True)
-    roots = [rt for rt in sp.Poly(y**4 + y - 1, y).real_roots() if rt.is_positive]
+    poly = sp.Poly(sp.expand(f.subs(X_CE, y**2)), y)
+    roots = [rt for rt in poly.real_roots() if rt.is_positive]
     x_exact = float(sp.N(roots[0] ** 2, 30))
-    x_brent = brentq(lambda x: math.sqrt(x) + x * x - 1.0, 0.0, 1.0, xtol=1e-15, rtol=1e-15)
+    fx = sp.lambdify(X_CE, f, modules=[{"sig": lambda a_, q: math.copysign(abs(a_) ** q, a_)},
+                                       "math"])
+    x_brent = brentq(fx, 0.0, 1.0, xtol=1e-15, rtol=1e-15)
     return x_exact, x_brent
 
 
+def _condition4_steps(f: sp.Expr = CE_SYSTEM) -> list[Step]:
+    """(4) for x' = f(x) with V = |x| and CE_CONSTANTS, computed on each sign branch of x:
+    V' = sgn(x) f(x), and (-(a V^p + b V^g)^k + eta) - V' >= 0."""
+    c = CE_CONSTANTS
+    xp = sp.Symbol("x_abs", positive=True)
+    out = []
+    for sg in (1, -1):
+        vdot = (sp.diff(sp.Abs(X_CE), X_CE) * f).subs(X_CE, sg * xp)
+        bound = -(c["a"] * xp ** c["p"] + c["b"] * xp ** c["g"]) ** c["k"] + c["eta"]
+        out.append(prove_nonneg(sp.simplify(bound - vdot),
+                                f"(4) holds for x' = f(x) on x {'>' if sg > 0 else '<'} 0: "
+                                "(-(a V^p + b V^g)^k + eta) - V' >= 0 with V = |x|, V' = sgn(x) "
+                                "f(x) (computed from f)"))
+    return out
+
+
 @cache
-def theorem1() -> Claim:
+def theorem1_corrected() -> Claim:
+    """What the workbench proves of Theorem 1: V reaches the set (5) within (6) and stays."""
     p_, g_ = p_sym, g_sym
     X = sp.Symbol("X", positive=True)  # X = a V^p + b V^g
     th = theta
@@ -249,10 +288,10 @@ def theorem1() -> Claim:
     mono = _lemma2_pointwise()
     dec = prove_nonneg(th**k * X**k, "theta^k X^k > 0: outside (5) V' < 0", strict=True)
     printed6 = 1 / (a**k * th**k * (1 - p_ * k)) + 1 / (b**k * th**k * (g_ * k - 1))
-    scaled = prove_identity(polyakov_expr(th * a, th * b, p_, g_, k) - printed6,
+    scaled = _identity(polyakov_expr(th * a, th * b, p_, g_, k) - printed6,
                             "(6) is Lemma 2's (3) with (a, b) -> (theta a, theta b)")
     steps = [
-        prove_identity(-(X**k) + eta - (-(1 - th**k) * X**k - th**k * X**k + eta),
+        _identity(-(X**k) + eta - (-(1 - th**k) * X**k - th**k * X**k + eta),
                        "(7): -(X)^k + eta = -(1-theta^k) X^k - theta^k X^k + eta"),
         *mono, outside, dec,
         Step("outside the set (5), V' <= -((theta a) V^p + (theta b) V^g)^k < 0: V reaches (5) "
@@ -262,27 +301,40 @@ def theorem1() -> Claim:
                    (outside, dec, scaled))),
         scaled,
     ]
-    x_star, x_brent = theorem1_counterexample()
-    # (4) holds for this system with V = |x|, a = b = 1, p = 1/2, g = 2, k = 1, eta = 1:
-    # V' = sgn(x) x' = -|x|^(1/2) - |x|^2 + sgn(x) <= -(V^(1/2) + V^2) + 1.
-    vdot_gap = [prove_nonneg(sp.Integer(1) - s_, f"(4) on x {'>' if s_ > 0 else '<'} 0: "
-                             "(-(V^(1/2) + V^2) + 1) - V' = 1 - sgn(x) >= 0")
-                for s_ in (1, -1)]
-    wording = witness_step(
-        "'the origin of (1) is fixed-time stable': every trajectory reaches x = 0",
-        {"system": "x' = -sig(x,1/2) - sig(x,2) + 1", "V": "|x|", "a": 1, "b": 1, "p": "1/2",
-         "g": 2, "k": 1, "eta": 1, "x(0) = x*": x_star,
-         "x*": "equilibrium, root of sqrt(x) + x^2 = 1"},
-        -x_star, "the trajectory from the equilibrium x* stays at |x| = x*: margin -x* "
-        "(x* from the positive root of y^4 + y - 1, y = sqrt(x), SymPy CRootOf, 30 digits)",
-        -x_brent if abs(x_brent - x_star) < 1e-12 and abs(math.sqrt(x_brent) + x_brent**2 - 1)
-        < 1e-14 else None,
-        "scipy brentq on sqrt(x) + x^2 - 1 over [0, 1]; agrees with the exact root to 1e-12",
-        domain={"x(0)": "(0, oo)"})
-    return Claim("theorem1", "(4)-(6), (7)-(9)", "Theorem 1: practical fixed-time stability",
+    return Claim("theorem1-corrected", "(4)-(6), (7)-(9)",
+                 "Theorem 1 as the workbench proves it: practical fixed-time stability",
                  "V' <= -(aV^p+bV^g)^k + eta => the origin is fixed-time stable, V reaches "
                  "(5) within (6)",
                  "V reaches the set (5) within (6) and stays there (proved, given the comparison "
-                 "lemma).  The sentence 'the origin is fixed-time stable' is false: the origin "
-                 f"is only practically fixed-time stable (counterexample: x* = {x_star:.10f}).",
-                 (*steps, *vdot_gap, wording), numbers={"x_star": x_star, "x_star_brentq": x_brent})
+                 "lemma): practical fixed-time stability of the set (5), not of the origin.",
+                 steps, statement="workbench", corrects="theorem1")
+
+
+@cache
+def theorem1() -> Claim:
+    """Theorem 1 as printed: 'the origin of (1) is fixed-time stable, and V reaches (5) within
+    (6)'.  The first part fails for x' = f(x) of ``CE_SYSTEM``, which satisfies (4)."""
+    from lgw.theory.evidence import FromClaim
+
+    x_star, x_brent = theorem1_counterexample()
+    f_txt = "x' = -sig(x,1/2) - sig(x,2) + 1"
+    wording = witness_step(
+        "'the origin of (1) is fixed-time stable': every trajectory reaches x = 0",
+        {"system": f_txt, "V": "|x|", **{k_: sp.sstr(v_) for k_, v_ in CE_CONSTANTS.items()},
+         "x(0) = x*": x_star, "x*": "equilibrium: the positive root of f(x) = 0"},
+        -x_star, "the trajectory from the equilibrium x* stays at |x| = x*: margin -x* (x* from "
+        "the positive real root of f(y^2) = 0, a polynomial in y = sqrt(x), SymPy, 30 digits)",
+        -x_brent if abs(x_brent - x_star) < 1e-12 and abs(float(CE_SYSTEM.subs(
+            X_CE, sp.Float(x_brent, 30)))) < 1e-12 else None,
+        "scipy brentq on f over [0, 1]; agrees with the exact root to 1e-12",
+        domain={"x(0)": "(0, oo)"})
+    steps = [*_condition4_steps(), wording,
+             Step("[claim theorem1-corrected] V reaches (5) within (6)",
+                  FromClaim(theorem1_corrected()))]
+    return Claim("theorem1", "(4)-(6), (7)-(9)", "Theorem 1: practical fixed-time stability",
+                 "V' <= -(aV^p+bV^g)^k + eta => the origin is fixed-time stable, V reaches "
+                 "(5) within (6)",
+                 "The sentence 'the origin is fixed-time stable' is false: x' = f(x) above "
+                 "satisfies (4) (computed) and has an equilibrium x* != 0 "
+                 f"(x* = {x_star:.10f}).  What holds is claim theorem1-corrected.", steps,
+                 numbers={"x_star": x_star, "x_star_brentq": x_brent})

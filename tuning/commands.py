@@ -26,7 +26,7 @@ from typing import Any
 import click
 from lgw.theory.errors import NotApplicableError, ParameterError
 from lgw.tuning.spec import click_params, option_fields
-from lgw.tuning.system import VERBS, Legacy, NotApplicable, Outcome, System, get_system
+from lgw.tuning.system import VERBS, NotApplicable, Outcome, System, get_system
 
 DOCUMENT = object()  # in Outcome.files: "the command's JSON document goes here"
 
@@ -47,8 +47,6 @@ def make_command(system: System, verb: str) -> click.Command:
         return click.Command(system.name, callback=refuse,
                              help=f"Not applicable to {system.name}: {reason}",
                              short_help=f"not applicable: {reason}")
-    if isinstance(v, Legacy):
-        return v.load().command
     mod = v.load()
     params = click_params(mod.Options)
 
@@ -153,6 +151,8 @@ def run(system: System, verb: str, mod: Any, opts: Any) -> int:
     gains = getattr(job, "gains", None)
     if gains is not None:
         head.update(system.gains_module().document(gains))
+    else:  # every document carries gains: a job that flies none (optimal) says null, a
+        head["gains"] = None  # tuner puts the gains it designed in its document
     doc = {**head, **outcome.document}
     if notes:
         doc["library_warnings"] = notes
@@ -246,15 +246,40 @@ class VerbGroup(click.Group):
 
 
 def verb_groups() -> list[VerbGroup]:
-    return [VerbGroup(verb, help=text, context_settings={"help_option_names": ["-h", "--help"]})
+    return [VerbGroup(verb, context_settings={"help_option_names": ["-h", "--help"]},
+                      **{"help": text, **_every_system(verb)})
             for verb, text in VERBS.items()]
+
+
+def _every_system(verb: str) -> dict[str, Any]:
+    """For a verb of ``EVERY_SYSTEM_VERBS``: ``lgw VERB`` without SYSTEM runs it for every
+    system in turn, with its default options; the exit code is the largest."""
+    from lgw.tuning.system import EVERY_SYSTEM_VERBS
+
+    if verb not in EVERY_SYSTEM_VERBS:
+        return {}
+
+    def every_system() -> int:
+        from lgw.tuning.system import system_names
+
+        ctx = click.get_current_context()
+        if ctx.invoked_subcommand is not None:
+            return 0
+        rc = 0
+        for name in system_names():
+            rc = max(rc, ctx.invoke(make_command(get_system(name), verb)) or 0)
+        return rc
+
+    return {"invoke_without_command": True, "callback": every_system,
+            "subcommand_metavar": "[SYSTEM] [OPTIONS]",
+            "help": f"{VERBS[verb]} Without SYSTEM: every system in turn."}
 
 
 def first_line(text: str | None) -> str:
     return _first_line(text)
 
 
-def all_commands(include_legacy: bool = True) -> list[tuple[str, str, click.Command]]:
+def all_commands() -> list[tuple[str, str, click.Command]]:
     """(verb, system, command) of every applicable verb of every system."""
     from lgw.tuning.system import all_systems
 
@@ -263,8 +288,6 @@ def all_commands(include_legacy: bool = True) -> list[tuple[str, str, click.Comm
         for verb in VERBS:
             v = s.verbs.get(verb)
             if v is None or isinstance(v, NotApplicable):
-                continue
-            if isinstance(v, Legacy) and not include_legacy:
                 continue
             out.append((verb, s.name, make_command(s, verb)))
     return out

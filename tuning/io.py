@@ -426,3 +426,39 @@ def write_json_document(payload: dict[str, Any], out: Any, indent: int | None = 
 def json_stream(payload: dict[str, Any], indent: int | None = 2) -> Stream:
     """The JSON document as file content for an output set."""
     return Stream(write=lambda f: write_json_document(payload, f, indent))
+
+
+# --- memory: estimated before a campaign allocates -------------------------------------------
+
+MEMORY_FRACTION = 0.5  # a run may use at most this share of the available memory
+
+
+def available_memory() -> int | None:
+    """Available memory in bytes (Linux /proc/meminfo ``MemAvailable``), or None when
+    unknown."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
+
+def check_memory(flag: str, n: int, bytes_per_case: float, what: str = "the per-case "
+                 "results", value: Any = None) -> None:
+    """Refuse, before anything is allocated, a run of ``n`` cases whose arrays (an estimate:
+    ``bytes_per_case`` each) would not fit in ``MEMORY_FRACTION`` of the available memory: a
+    ParameterError naming ``flag`` (with ``value``, default ``n``) and the largest number of
+    cases that fits, never a MemoryError."""
+    need = float(n) * float(bytes_per_case)
+    avail = available_memory()
+    if avail is None or need <= MEMORY_FRACTION * avail:
+        return
+    fits = int(MEMORY_FRACTION * avail / max(bytes_per_case, 1.0))
+    hint = (f"at most about {fits} cases here (split the run, or shorten it)" if fits >= 1
+            else "not even one case fits (shorten the run or take a longer step)")
+    raise ParameterError(flag, n if value is None else value, f"needs about "
+                         f"{need / 2**30:.3g} GiB for {what}; this machine has "
+                         f"{avail / 2**30:.3g} GiB available: {hint}")

@@ -1,14 +1,20 @@
 """``lgw report SYSTEM``, written once: the system builds the parts (claims judged for the gain
-set, the report spec, the computed sections with their figures, the coverage table); this
-module renders Markdown, LaTeX, HTML and claims.json from them, writes them with every figure
-as one atomic set, prints the verdict counts (the paper's statements and the workbench's
-own, apart) or the claims as JSON.
+set, the report spec, the computed sections with their figures, the coverage table, and the
+command that reproduces each refuted claim); this module renders Markdown, LaTeX, HTML and
+claims.json from them (each opening with the findings: the paper's title and its refuted
+statements), writes them with every figure as one atomic set, prints the verdict counts (the
+paper's statements and the workbench's own, apart) or the claims as JSON.
+
+``ReportJob.only``: report only the claims with these ids (a system's ``--claim ID``, the
+command the findings give to reproduce one witness); an unknown id is a ParameterError naming
+the valid ones.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -27,6 +33,7 @@ class ReportParts:
     spec: Any  # lgw.theory.report.ReportSpec
     sections: Sequence[Any] = ()
     coverage: Sequence[Any] | None = None
+    reproduce: Mapping[str, str] | None = None  # claim id -> command (default: see run)
 
 
 @dataclass(frozen=True)
@@ -53,6 +60,11 @@ class ReportJob(Job):
     inputs: Any
     render_documents: bool = True
     gains: Any = field(default=None, metadata={"fingerprint": False})
+    only: tuple[str, ...] = ()
+    # where a claim's reproduction command points (a system whose report takes --claim):
+    # the gains file and whether the report flies its scenarios (--sim)
+    gains_path: str = ""
+    claim_option: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "gains", getattr(self.inputs, "gains", None))
@@ -62,14 +74,32 @@ class ReportJob(Job):
 
         parts: ReportParts = resolve(self.builder)(self.inputs, progress)
         claims = list(parts.claims)
-        text = R.claims_json(claims)
+        if self.only:
+            known = [c.id for c in claims]
+            bad = [x for x in self.only if x not in known]
+            if bad:
+                raise ParameterError("--claim", ", ".join(bad), "must be a claim id of this "
+                                     "report: " + ", ".join(known))
+            claims = [c for c in claims if c.id in self.only]
+        system = self.builder.split(".")[2] if self.builder.count(".") >= 3 else ""
+        reproduce = dict(parts.reproduce or {})
+        for c in claims:
+            reproduce.setdefault(c.id, one_claim_command(system, c, self.gains_path)
+                                 if self.claim_option else
+                                 f"lgw report {system} --json  (claim {c.id}: its witness)")
+        spec = parts.spec
+        if not getattr(spec, "paper_title", "") and system:
+            from lgw.tuning.system import get_system
+            spec = dataclasses.replace(spec, paper_title=get_system(system).title)
+        text = R.claims_json(claims, reproduce)
         files: dict[str, Any] = {}
         if self.render_documents:
             progress.stage("rendering Markdown, LaTeX and HTML")
             cov = parts.coverage
             for name, fn in (("report.md", R.render_markdown), ("report.tex", R.render_latex),
                              ("report.html", R.render_html)):
-                files[name] = fn(claims, parts.spec, list(parts.sections), coverage=cov)
+                files[name] = fn(claims, spec, list(parts.sections), coverage=cov,
+                                 reproduce=reproduce)
             files["claims.json"] = text
             for sec in parts.sections:
                 for fig in getattr(sec, "figures", ()):
@@ -77,6 +107,23 @@ class ReportJob(Job):
         counts = statement_counts(claims)
         return Outcome(json.loads(text), render=lambda con: _render(con, counts),
                        files=files)
+
+
+def one_claim_command(system: str, claim: Any, gains_path: str = "") -> str:
+    """The command that recomputes one claim alone and prints it (its witness) as JSON: the
+    claims on the paper's simulations need the scenarios flown (--sim), the others not."""
+    gains = f" --gains {gains_path}" if gains_path else ""
+    sim = "" if getattr(claim, "scope", "") == "scenario" else " --no-sim"
+    return f"lgw report {system}{gains}{sim} --claim {claim.id} --json"
+
+
+def claim_option(probe: str) -> Any:
+    """The --claim option of ``lgw report SYSTEM`` (``probe``: a claim id of the system)."""
+    from lgw.tuning.spec import option
+
+    return option("--claim", None, (), "report only this claim (its id; the findings give the "
+                  "command that reproduces each refuted claim's witness); repeatable",
+                  multiple=True, metavar="ID", probe=(probe,))
 
 
 def statement_counts(claims: Sequence[Any]) -> dict[str, dict[str, int]]:
@@ -89,14 +136,9 @@ def statement_counts(claims: Sequence[Any]) -> dict[str, dict[str, int]]:
 
 
 def _render(con: Any, counts: dict[str, dict[str, int]]) -> None:
-    total: dict[str, int] = {}
-    for c in counts.values():
-        for k, v in c.items():
-            total[k] = total.get(k, 0) + v
-    con.print("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(total.items())),
-              markup=False)
+    """The verdict counts of the paper's statements first (the summary), then the workbench's
+    own (its corrections and its own laws), apart."""
     for who, c in counts.items():
-        if c:
-            label = "the paper's statements" if who == "paper" else "the workbench's own"
-            con.print(f"verdicts, {label}: " + ", ".join(f"{k} {v}" for k, v in c.items()),
-                      markup=False)
+        label = "the paper's statements" if who == "paper" else "the workbench's own"
+        con.print(f"verdicts, {label}: " + (", ".join(f"{k} {v}" for k, v in c.items())
+                                            or "none"), markup=False)

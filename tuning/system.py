@@ -46,6 +46,8 @@ VERBS = {
     "optimal": "Offline fuel-optimal baseline (lossless convexification).",
     "warmup": "Build and cache every compiled kernel of a system in one step.",
 }
+# verbs that, given no SYSTEM, run for every system in turn (lgw.tuning.commands)
+EVERY_SYSTEM_VERBS = ("warmup",)
 
 
 @dataclass
@@ -95,18 +97,6 @@ class Verb:
 
 
 @dataclass(frozen=True)
-class Legacy:
-    """A verb still written as its own click command (``module.command``), during the move of
-    every verb onto the shared commands."""
-
-    module: str
-    help: str
-
-    def load(self) -> Any:
-        return importlib.import_module(self.module)
-
-
-@dataclass(frozen=True)
 class NotApplicable:
     """A verb that does not apply to a system, and why (shown in --help, exit 2)."""
 
@@ -118,16 +108,18 @@ class System:
     """One paper's contribution.  ``verbs``: verb -> ``Verb`` or ``NotApplicable``.
     ``gains``: import path of a module with ``load(path) -> Gains`` and ``default() ->
     Gains``; ``claims``: import path of ``all_claims(gains)``; ``interop``: of the
-    python-control blocks (``plant()``, ``law(gains)``)."""
+    python-control blocks (``plant()``, ``law(gains)``); ``kernels``: of
+    ``warmup_kernels() -> [(name, build)]``, the system's compiled kernels (``lgw warmup``)."""
 
     name: str
     seed: str
     title: str
     summary: str
     gains: str
-    verbs: Mapping[str, Verb | Legacy | NotApplicable]
+    verbs: Mapping[str, Verb | NotApplicable]
     claims: str = ""
     interop: str = ""
+    kernels: str = ""
 
     def verb(self, verb: str) -> Verb:
         v = self.verbs.get(verb)
@@ -175,9 +167,6 @@ def check_consistent(systems: Iterable[System] | None = None) -> list[str]:
             v = s.verbs.get(verb)
             if v is None:
                 problems.append(f"{s.name}: verb {verb} neither implemented nor not-applicable")
-            elif isinstance(v, Legacy):
-                if not hasattr(v.load(), "command"):
-                    problems.append(f"{s.name} {verb}: {v.module} has no command")
             elif isinstance(v, Verb):
                 m = v.load()
                 for attr in ("Options", "plan"):

@@ -70,9 +70,12 @@ def t_max(default: float | None, what: str = "simulation horizon", hi: float = 1
                   f"{what}, s" + ("" if default is not None else " [default: the scenario's]"))
 
 
-def dt(default: float | None, hi: float = 1.0, what: str = "RK4 step; dopri5: first step"
-       ) -> Any:
-    return option("--dt", Number(0, hi, lo_open=True, unit="s"), default, f"{what}, s")
+def dt(default: float | None, hi: float = 1.0, what: str = "RK4 step; dopri5: first step",
+       probe: Any = None) -> Any:
+    """``probe``: a value for the options test when the derived one (the middle of the range)
+    could be the default the system chooses."""
+    return option("--dt", Number(0, hi, lo_open=True, unit="s"), default, f"{what}, s",
+                  probe=probe)
 
 
 def method(default: str = "rk4") -> Any:

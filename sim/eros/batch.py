@@ -5,7 +5,7 @@ Two implementations of the same loop, selected by ``SimOptions.engine``:
   "kernel" (default)  the compiled kernel ``lgw.sim.eros.kernel`` on the shared integrator
                       ``lgw.sim.integrate`` with its zero-order hold: RK4 with n_sub steps per
                       sample, or (method="dopri5") Dormand-Prince 5(4) with rtol / atol and its
-                      steps clipped at the samples; cases in parallel (numba prange);
+                      steps clipped at the samples; cases in parallel (threads);
   "numpy"             ``simulate_numpy``, the numpy-vectorised RK4 stand-in this module had
                       before, kept as the independent cross-check (same ZOH, same substeps:
                       the two agree to rounding, tests/eros/test_kernel.py).
@@ -30,10 +30,11 @@ final state.
 Outcomes (``OUTCOMES``): every case ends in exactly one, with its time (``Result.outcome``,
 ``Result.t_outcome``), the first thing that happened:
 
-  "surface_contact"  the sampled position is inside the shape model of Eros (the polyhedron of
+  "crashed"          the sampled position is inside the shape model of Eros (the polyhedron of
                      lgw.theory.eros.polyhedron; checked at every sample t_k, after a bounding-box
                      screen); time: the first such sample.  The case is frozen there (a crash:
-                     the plant (4) does not model contact).  Between samples a contact is not
+                     the plant (4) does not model contact; the shared vocabulary's name,
+                     lgw.sim.results).  Between samples a contact is not
                      located (a probe faster than ~1e5 m/s could cross the body unseen).
   "nonfinite"        the control u_k or the state became NaN / inf; time: the start t_k of the
                      sample interval that blew up (u_k itself, or an RK4 stage within it).  The
@@ -55,6 +56,7 @@ from functools import cache
 import numpy as np
 from lgw.sim.eros import laws as SL
 from lgw.sim.eros import plant as PL
+from lgw.sim.results import names as _shared_names
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros import reference as REF
 from lgw.theory.eros.gains import Gains
@@ -63,7 +65,7 @@ from scipy.integrate import solve_ivp
 
 DIST_MODES = ("known", "unknown", "none")
 ENGINES = ("kernel", "numpy")
-OUTCOMES = ("surface_contact", "nonfinite", "tracked", "horizon")
+OUTCOMES = _shared_names("crashed", "nonfinite", "tracked", "horizon")  # lgw.sim.results
 
 
 @dataclass(frozen=True)
@@ -321,7 +323,7 @@ def simulate_kernel(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
                     parallel: bool = True) -> Result:
     """The compiled kernel (lgw.sim.eros.kernel) on the shared integrator's zero-order hold:
     the same loop, outcomes and histories as ``simulate_numpy``; two-point or no gravity.
-    Cases run in chunks of ``chunk`` (numba prange inside a chunk when ``parallel``)."""
+    Cases run in chunks of ``chunk`` (in threads inside a chunk when ``parallel``)."""
     from lgw.sim import executors, integrate
     from lgw.sim.eros import kernel as KN
     from lgw.sim.options import IntegrationOptions
@@ -358,10 +360,10 @@ def simulate_kernel(e0: np.ndarray, ed0: np.ndarray, g: Gains, opts: SimOptions,
     gout = integrate.generic_outputs(n, KN.NY)
     G = tuple(gout[k] for k in integrate.GENERIC_FIELDS)  # noqa: N806
     C = (np.ascontiguousarray(pos0), np.ascontiguousarray(vel0), np.ascontiguousarray(cp))
-    kfn = mod.kernel_parallel if parallel else mod.kernel_serial
+    C, Q = integrate.kernel_args(C), integrate.kernel_args(Q)  # noqa: N806
     empty = np.empty((1, 1, 1))
-    executors.run_local(lambda sl: integrate.run_chunk(kfn, sl, C, Q, R, O, G, empty, empty),
-                        n, chunk)
+    executors.run_local(lambda sl: integrate.run_chunk(mod.kernel, sl, C, Q, R, O, G, empty,
+                                                       empty, parallel), n, chunk)
     # a step that blew up (or, dopri5, the step limit) ends the case inside sample interval
     # k_last: non-finite, at that interval's t_k (as the stand-in)
     blew = (gout["nonfinite"] | gout["step_limit"]) & (code == KN.RUNNING)
@@ -538,3 +540,25 @@ def metrics(res: Result, track_tol: float = P.TRACK_TOL) -> dict[str, np.ndarray
         "e_final": e[-1], "ed_final": res.ed[-1], "nonfinite": res.nonfinite,
         "outcome": res.outcome, "t_outcome": res.t_outcome,
     }
+
+
+def warmup_kernels() -> list[tuple[str, object]]:
+    """The compiled kernels of seed 002, as (name, build): the sampled-data tracking loop's
+    kernel with all six variants (``lgw.sim.eros.kernel``), built by flying the paper's
+    scenario for two samples through ``simulate_kernel``, and the whole descent's kernel
+    (``lgw.sim.eros.descent_kernel``), built by flying the descent for two samples through
+    ``simulate_descent`` (the argument types of every run)."""
+    from lgw.theory.eros.gains import default_gains
+
+    def build() -> None:
+        opts = SimOptions(t_final=2 * P.DT_SAMPLE)
+        simulate_kernel(P.SCENARIO_OFFSET[None], P.SCENARIO_VOFFSET[None], default_gains(),
+                        opts, parallel=False)
+
+    def build_descent() -> None:
+        from lgw.sim.eros.descent import DescentOptions, descent_gains, simulate_descent
+        z = np.zeros((1, 3))
+        simulate_descent(z, z, descent_gains(), DescentOptions(t_max=2 * P.DESCENT_DT),
+                         parallel=False)
+
+    return [("eros", build), ("eros/descent", build_descent)]

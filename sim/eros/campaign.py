@@ -61,14 +61,22 @@ def monte_carlo(g: Gains, n: int, seed: int, base: SimOptions | None = None):
 
 
 def table(res: dict[str, dict[str, np.ndarray]]) -> list[dict[str, float | str]]:
-    """Rows of the Table 2 analogue: per variant mean and max of each summary key."""
+    """Rows of the Table 2 analogue: per variant mean and max of each summary key, over the
+    finite values of the cases that tracked or reached the horizon (lgw.sim.stats.finite_stats:
+    a crashed or non-finite case is counted in ``outcomes``, never inside a mean or a maximum;
+    ``{key}_n`` says how many cases a statistic summarises, None when none)."""
+    from lgw.sim.eros.batch import OUTCOMES
+    from lgw.sim.stats import finite_stats
+
     rows = []
     for name, d in res.items():
-        row: dict[str, float | str] = {"variant": name}
+        row: dict[str, float | str | None] = {"variant": name}
+        counted = np.isin(d["outcome"], [OUTCOMES.index("tracked"), OUTCOMES.index("horizon")])
         for k in SUMMARY_KEYS:
-            v = np.asarray(d[k], float)
-            row[f"{k}_mean"] = float(np.mean(v))
-            row[f"{k}_max"] = float(np.max(v))
+            st = finite_stats(d[k], counted)
+            row[f"{k}_mean"] = st["mean"]
+            row[f"{k}_max"] = st["max"]
+            row[f"{k}_n"] = st["n"]
         row["nonfinite"] = int(np.sum(d["nonfinite"]))
         row["outcomes"] = outcome_counts(d["outcome"])
         rows.append(row)

@@ -100,42 +100,21 @@ def law_functions() -> list[tuple[str, str]]:
 
 
 def law_header() -> str:
+    """The generated laws and plant terms, and the compiled solid-angle sum of the mesh."""
     from lgw.sim.codegen import VECTOR_IMPORTS
     body = []
     for name, src in law_functions():
         body += [src, f"{name} = numba.njit({name}, cache=True, error_model='numpy')", ""]
-    return "\n".join([*VECTOR_IMPORTS[1:], "", *body])
+    return "\n".join([*VECTOR_IMPORTS[1:], "from lgw.sim.eros.polygrav import solid_angle_sum",
+                      "", *body])
 
 
 # --- templates (hooks; names resolve in the generated module) --------------------------------
 
 def _inside(x0, x1, x2, V, F):
-    """Solid-angle sum of the faces seen from x (> 2 pi: inside), as
-    lgw.theory.eros.polyhedron.inside (van Oosterom & Strackee)."""
-    tot = 0.0
-    for f in range(F.shape[0]):
-        a = F[f, 0]
-        b = F[f, 1]
-        c = F[f, 2]
-        r10 = V[a, 0] - x0
-        r11 = V[a, 1] - x1
-        r12 = V[a, 2] - x2
-        r20 = V[b, 0] - x0
-        r21 = V[b, 1] - x1
-        r22 = V[b, 2] - x2
-        r30 = V[c, 0] - x0
-        r31 = V[c, 1] - x1
-        r32 = V[c, 2] - x2
-        l1 = math.sqrt(r10 * r10 + r11 * r11 + r12 * r12)
-        l2 = math.sqrt(r20 * r20 + r21 * r21 + r22 * r22)
-        l3 = math.sqrt(r30 * r30 + r31 * r31 + r32 * r32)
-        num = (r10 * (r21 * r32 - r22 * r31) + r11 * (r22 * r30 - r20 * r32)
-               + r12 * (r20 * r31 - r21 * r30))
-        den = (l1 * l2 * l3 + l1 * (r20 * r30 + r21 * r31 + r22 * r32)
-               + l2 * (r30 * r10 + r31 * r11 + r32 * r12)
-               + l3 * (r10 * r20 + r11 * r21 + r12 * r22))
-        tot += 2.0 * math.atan2(num, den)
-    return tot > 2.0 * math.pi
+    """True if x is inside the mesh: the solid-angle sum of its faces > 2 pi
+    (lgw.sim.eros.polygrav.solid_angle_sum; lgw.theory.eros.polyhedron.inside)."""
+    return solid_angle_sum(x0, x1, x2, V, F) > 2.0 * math.pi  # noqa: F821
 
 
 def _clearance(x0, x1, x2, A, NRM, CEN, RAD):
@@ -183,14 +162,9 @@ def _contact(y, S, Q):  # noqa: N803
     return S[ST] != 0.0  # noqa: F821
 
 
-def _controller(i, k, y, S, C, Q, R):  # noqa: N803
-    """Sample k (time t0 + k dt): reference, errors, drift, surface and the generated control;
-    writes e, e', s into R's histories and u into S[U0:U0+3]; returns True if u and s are
-    finite."""
-    pos0, vel0, cph = C
-    (lawc, swc, gv, coef, t0, ts, amp, freq, phase, distc, gravc, omega, p1, p2, gm,
-     contact_on, lo, hi, V, F, A, NRM, CEN, RAD) = Q
-    E, ED, SVH = R[0], R[1], R[2]
+def _u_axis(lawc, swc, e, ed, f, dk, xdd, d, gv, out):
+    """One axis of the generated control (lgw.theory.eros.laws.control): the variant picked
+    by the law and switch codes, gains gv in the order of lgw.sim.eros.laws.GAIN_ARGS."""
     alpha = gv[0]
     beta = gv[1]
     r = gv[2]
@@ -200,6 +174,48 @@ def _controller(i, k, y, S, C, Q, R):  # noqa: N803
     M = gv[6]
     phi = gv[7]
     ef = gv[8]
+    if lawc == 0:
+        if swc == 0:
+            u_pdsmc_sign(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
+                         out)
+        else:
+            u_pdsmc_tanh(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
+                         out)
+    elif lawc == 1:
+        if swc == 0:
+            u_ftsmc_sign(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
+                         out)
+        else:
+            u_ftsmc_tanh(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
+                         out)
+    else:
+        if swc == 0:
+            u_fuzzy_sign(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
+                         out)
+        else:
+            u_fuzzy_tanh(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
+                         out)
+
+
+def _s_axis(lawc, e, ed, gv, out):
+    """One axis's surface value: the PD surface (law code 0) or the FTSM surface (6)."""
+    if lawc == 0:
+        s_pd(e, ed, gv[0], gv[1], gv[2], gv[3], gv[4], gv[5], gv[6], gv[7], gv[8],  # noqa
+             out)
+    else:
+        s_ftsm(e, ed, gv[0], gv[1], gv[2], gv[3], gv[4], gv[5], gv[6], gv[7], gv[8],  # noqa
+               out)
+
+
+def _controller(i, k, y, S, C, Q, R):  # noqa: N803
+    """Sample k (time t0 + k dt): reference, errors, drift, surface and the generated control;
+    writes e, e', s into R's histories and u into S[U0:U0+3]; returns True if u and s are
+    finite."""
+    pos0, vel0, cph = C
+    (lawc, swc, gv, coef, t0, ts, amp, freq, phase, distc, gravc, omega, p1, p2, gm,
+     contact_on, lo, hi, V, F, A, NRM, CEN, RAD) = Q
+    E, ED, SVH = R[0], R[1], R[2]
+    alpha = gv[0]
     t = t0 + k * ts
     rot_terms(y[0], y[3], y[1], y[4], y[2], y[5], omega, S[F0:F0 + 3])  # noqa: F821
     two_point(y[0], y[1], y[2], p1[0], p1[1], p1[2], p2[0], p2[1], p2[2], 1.0,  # noqa: F821
@@ -213,10 +229,7 @@ def _controller(i, k, y, S, C, Q, R):  # noqa: N803
         ed = y[3 + a] - (c1 + 2 * c2 * t + 3 * c3 * t ** 2)
         E[i, k, a] = e
         ED[i, k, a] = ed
-        if lawc == 0:
-            s_pd(e, ed, alpha, beta, r, kk, lam, N, M, phi, ef, S[SV0 + a:SV0 + a + 1])  # noqa
-        else:
-            s_ftsm(e, ed, alpha, beta, r, kk, lam, N, M, phi, ef, S[SV0 + a:SV0 + a + 1])  # noqa
+        _s_axis_fn(lawc, e, ed, gv, S[SV0 + a:SV0 + a + 1])  # noqa: F821
         SVH[i, k, a] = S[SV0 + a]  # noqa: F821
     d = 0.0
     if lawc == 2:
@@ -229,28 +242,7 @@ def _controller(i, k, y, S, C, Q, R):  # noqa: N803
         f = S[F0 + a] + S[G0 + a]  # noqa: F821
         dk = amp * math.sin(freq * t + (phase[a] + cph[i])) if distc == 0 else 0.0
         xdd = 2 * coef[a, 2] + 6 * coef[a, 3] * t
-        out = S[U0 + a:U0 + a + 1]  # noqa: F821
-        if lawc == 0:
-            if swc == 0:
-                u_pdsmc_sign(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
-                             out)
-            else:
-                u_pdsmc_tanh(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
-                             out)
-        elif lawc == 1:
-            if swc == 0:
-                u_ftsmc_sign(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
-                             out)
-            else:
-                u_ftsmc_tanh(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
-                             out)
-        else:
-            if swc == 0:
-                u_fuzzy_sign(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
-                             out)
-            else:
-                u_fuzzy_tanh(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
-                             out)
+        _u_axis_fn(lawc, swc, e, ed, f, dk, xdd, d, gv, S[U0 + a:U0 + a + 1])  # noqa: F821
         if not (math.isfinite(S[U0 + a]) and math.isfinite(S[SV0 + a])):  # noqa: F821
             ok = False
     return ok
@@ -347,8 +339,9 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
                 U[i, k, a] = 0.0
 
 
-HELPERS = (_inside, _clearance, _contact, _controller)
-INLINE = (_controller,)  # inlined into sys_sample (measured: see benchmarks/bench_eros.py)
+HELPERS = (_inside, _clearance, _contact, _u_axis, _s_axis, _controller)
+# inlined into sys_sample (measured: see benchmarks/bench_eros.py)
+INLINE = (_u_axis, _s_axis, _controller)
 HOOKS = (sys_init, sys_rhs, sys_sample, sys_start, sys_step, sys_finish)
 SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY": LY, "LZ": LZ,
          "OUT": OUT, "TEV": TEV, "KCUR": KCUR, "F0": F0, "G0": G0, "SV0": SV0, "U0": U0,
@@ -357,31 +350,36 @@ SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY":
 
 def hooks_source() -> str:
     """The hooks as written into a kernel module, with their slots."""
+    from lgw.sim.integrate import hook_jit
     src = [inspect.getsource(f) + "\n" for f in HELPERS + HOOKS]
     jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True"
             + (", inline='always')" if f in INLINE else ")") for f in HELPERS]
-           + [f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', inline='always')"
-              for f in HOOKS])
+           + hook_jit(f.__name__ for f in HOOKS))
     return "\n".join([*(f"{k} = {v!r}" for k, v in SLOTS.items()), "", *src, *jit])
 
 
-def _key_sources() -> list[str]:
-    import lgw
+def _deps() -> list[str]:
+    """The sources of the modules the generated kernel imports compiled code from (numba does
+    not check them), as first read in this process (lgw.sim.kernel_cache)."""
     from lgw.sim import codegen, integrate, kernel_cache
-    from lgw.sim.eros import kernel
-    from lgw.theory.eros import gravity, laws
-    return [lgw.__version__, *kernel_cache.source_of(codegen, integrate, kernel_cache, kernel,
-                                                     laws, gravity)]
+    from lgw.sim.eros import kernel, polygrav
+    return kernel_cache.imported_sources(codegen, integrate, kernel, polygrav)
+
+
+def kernel_text() -> str:
+    """The full text of the generated kernel module (what the cache keys)."""
+    from lgw.sim import integrate
+    return integrate.kernel_module_source(law_header(), hooks_source(),
+                                          {"NY": NY, "NX": NX, "NS": NS})
 
 
 @functools.cache
 def kernel_module():
     """The generated kernel module of seed 002's sampled-data loop (all six variants), from
-    the disk cache."""
-    from lgw.sim import integrate, kernel_cache
-    stem = f"eros_kernel_{kernel_cache.key(_key_sources())}"
-    return kernel_cache.load_module(stem, lambda: integrate.kernel_module_source(
-        law_header(), hooks_source(), {"NY": NY, "NX": NX, "NS": NS}))
+    the disk cache, keyed by its text and found by its inputs
+    (``lgw.sim.kernel_cache.generated_module``)."""
+    from lgw.sim import kernel_cache
+    return kernel_cache.generated_module("eros_kernel", kernel_text, _deps())
 
 
 @functools.cache
@@ -394,3 +392,6 @@ def body_arrays() -> tuple[np.ndarray, ...]:
     lo, hi, a, n, cen, rad = _body()
     return tuple(np.ascontiguousarray(x) for x in (lo, hi, P.vertices, P.faces.astype(np.int64),
                                                    a, n, cen, rad))
+
+
+_deps()  # read the sources the kernel imports now, at this module's import (see _deps)

@@ -84,8 +84,30 @@ def rk4_numpy(ctx: Context, X0: np.ndarray, record_every: int = 5) -> BatchResul
     return BatchResult(np.array(ts), np.array(Xs), out, flagged, h)
 
 
-def _kernel_inputs(ctx: Context, X0: np.ndarray) -> tuple[tuple, tuple]:
-    """(C, Q) of the kernel (lgw.sim.lunar.kernel) for the context and initial states."""
+def failure_centres(ctx: Context, t_fail: np.ndarray | float | None = None) -> np.ndarray:
+    """t_c of the kernel per case: the atan's centre 2 t_fail (default t_f, seed 001 (26):
+    atan(2t - t_f)) or the step time t_fail (default t_f / 2)."""
+    o = ctx.opts
+    tf_ = t_fail if t_fail is not None else o.t_fail
+    if o.failure == "atan":
+        return np.asarray(ctx.ref.tf if tf_ is None else 2.0 * np.asarray(tf_, float), float)
+    return np.asarray(ctx.ref.tf / 2 if tf_ is None else tf_, float)
+
+
+def failure_times(ctx: Context, t_fail: np.ndarray | float | None = None) -> np.ndarray:
+    """The failure time per case (s): ``t_fail`` or t_f / 2 (seed 001 Section 5)."""
+    tf_ = t_fail if t_fail is not None else ctx.opts.t_fail
+    return np.asarray(ctx.ref.tf / 2 if tf_ is None else tf_, float)
+
+
+def _kernel_inputs(ctx: Context, X0: np.ndarray,
+                   failures: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[tuple, tuple]:
+    """(C, Q) of the kernel (lgw.sim.lunar.kernel) for the context and initial states;
+    ``failures`` = (T_a (N,), t_fail (N,) s) per case (a Monte Carlo campaign), else the run's
+    ``Ta`` and ``t_fail`` for every case."""
+    from lgw.sim import integrate
+    from lgw.sim.lunar.outcomes import AFTER_FAILURE_S
+
     o = ctx.opts
     ref = ctx.ref
     n = X0.shape[1]
@@ -97,20 +119,23 @@ def _kernel_inputs(ctx: Context, X0: np.ndarray) -> tuple[tuple, tuple]:
     def vecs(g, k):
         return np.ascontiguousarray(np.broadcast_to(g[k], (n,)), dtype=float)
 
+    ta, tfail = (o.Ta, None) if failures is None else failures
+
+    def per_case(x):
+        return np.ascontiguousarray(np.broadcast_to(np.asarray(x, float), (n,)), dtype=float)
+
     C = (np.ascontiguousarray(X0.T, dtype=float), mats(ctx.go, "K1"), mats(ctx.go, "F2"),
          vecs(ctx.go, "f3"), vecs(ctx.go, "q"), mats(ctx.ga, "K1"), mats(ctx.ga, "F2"),
-         vecs(ctx.ga, "f3"), vecs(ctx.ga, "q"))
-    if o.failure == "atan":
-        tc = ref.tf if o.t_fail is None else 2.0 * o.t_fail
-    else:
-        tc = ref.tf / 2 if o.t_fail is None else o.t_fail
+         vecs(ctx.ga, "f3"), vecs(ctx.ga, "q"), per_case(ta),
+         per_case(failure_centres(ctx, tfail)),
+         per_case(failure_times(ctx, tfail) + AFTER_FAILURE_S))
     sx, sc = ref.spline
     Q = (sx, sc, float(ref.a1), float(ref.a2), float(ref.a3), float(ref.tf),
          float(o.thrust_max), float(o.torque_max), SAT_CODE[o.sat_reading],
-         FAILURE_CODE[o.failure], float(o.Ta), float(tc), float(o.dist_amp), float(o.cmd_wn),
+         FAILURE_CODE[o.failure], float(o.dist_amp), float(o.cmd_wn),
          POINTING_CODE[o.thrust_pointing], np.ascontiguousarray(ctx.J[:, 0], dtype=float),
          float(o.m_dry), float(P.QUAT_NORM_TOL))
-    return C, Q
+    return integrate.kernel_args(C), integrate.kernel_args(Q)
 
 
 SAT_CODE = {"commanded": 0, "nominal": 1}
@@ -121,11 +146,13 @@ POINTING_CODE = {"coupled": 0, "ideal": 1}
 def simulate(ctx: Context, X0: np.ndarray, *, method: str = "rk4", record: bool = True,
              record_every: int = 5, rtol: float = 1e-6, atol: float = 1e-6,
              max_step: float = 1.0, max_steps: int = 200_000, parallel: bool = True,
-             chunk: int = 1024) -> BatchResult:
+             chunk: int = 1024, failures: tuple[np.ndarray, np.ndarray] | None = None
+             ) -> BatchResult:
     """All cases of X0 (30, N) on the compiled kernel, RK4 at ``ctx.opts.dt`` (adjusted so that
     an integer number of steps ends exactly at t_end, as ``rk4_numpy``) or dopri5 (rtol, atol,
     max_step s, max_steps attempts).  record (RK4 only): the states and signals at every
-    ``record_every``-th node (and the last), as ``BatchResult.X`` / ``out``."""
+    ``record_every``-th node (and the last), as ``BatchResult.X`` / ``out``.  ``failures``:
+    (T_a (N,), t_fail (N,) s) per case, else the run's (``ctx.opts``)."""
     from lgw.sim import executors, integrate
     from lgw.sim.kernel_cache import CompileNotice
     from lgw.sim.lunar import kernel as K
@@ -141,7 +168,7 @@ def simulate(ctx: Context, X0: np.ndarray, *, method: str = "rk4", record: bool 
                              max_steps=max_steps, record=record)
     O = integrate.integration_tuple(opt, t_end)
     n = X0.shape[1]
-    C, Q = _kernel_inputs(ctx, X0)
+    C, Q = _kernel_inputs(ctx, X0, failures)
     R = tuple(np.zeros(n, np.int64) if k in ("outcome", "sat_entries") else np.full(n, np.nan)
               for k in K.RESULT_FIELDS)
     G = tuple(integrate.generic_outputs(n, K.NY)[k] for k in integrate.GENERIC_FIELDS)
@@ -149,10 +176,9 @@ def simulate(ctx: Context, X0: np.ndarray, *, method: str = "rk4", record: bool 
     rec_y = np.full((*shape, K.NY), np.nan)
     rec_x = np.full((*shape, K.NX), np.nan)
     mod = K.kernel_module()
-    fn = mod.kernel_parallel if parallel else mod.kernel_serial
-    with CompileNotice(fn, "the lunar kernel", "~1-2 min"):
-        executors.run_local(lambda sl: integrate.run_chunk(fn, sl, C, Q, R, O, G, rec_y, rec_x),
-                            n, chunk)
+    with CompileNotice(mod.kernel, "the lunar kernel", "~20-40 s"):
+        executors.run_local(lambda sl: integrate.run_chunk(mod.kernel, sl, C, Q, R, O, G, rec_y,
+                                                           rec_x, parallel), n, chunk)
     res = dict(zip(K.RESULT_FIELDS, R, strict=True))
     res.update(zip(integrate.GENERIC_FIELDS, G, strict=True))
     code = res["outcome"].copy()
@@ -206,6 +232,32 @@ def solve_ivp_case(ctx: Context, x0: np.ndarray, t_eval: np.ndarray, rtol: float
     return solve_ivp(f, (0.0, t_end), x0, method=method, rtol=rtol, atol=atol, t_eval=t_eval)
 
 
+def solve_ivp_compiled(ctx: Context, x0: np.ndarray, t_eval: np.ndarray | None = None,
+                       rtol: float = 1e-10, atol: float = 1e-10, method: str = "DOP853"):
+    """A tight adaptive reference for one case: scipy's ``solve_ivp`` on the compiled vector
+    field of the kernel (``sys_rhs``, checked against ``closed_loop.field`` by the tests), an
+    integrator independent of the kernel's RK4 and dopri5 and ~20x faster per call than the
+    numpy field.  Note: after the loop starts sliding on z2 = 0 (claim smooth-7) an adaptive
+    step must resolve every switch of the relay of (7): the whole Section 5 run at rtol = atol
+    = 1e-6 takes ~3.7 M evaluations (~9 min); LSODA did not finish it in 30 min."""
+    from lgw.sim.lunar import kernel as K
+
+    o = ctx.opts
+    t_end = ctx.tf if o.t_end is None else o.t_end
+    C, Q = _kernel_inputs(ctx, x0[:, None])
+    rhs = K.kernel_module().sys_rhs
+    Y = np.zeros((1, K.NY))
+    Kk = np.zeros((1, K.NY))
+    X = np.zeros(K.NX)
+
+    def f(t, x):
+        Y[0] = x
+        rhs(t, Y, 0, Kk, 0, X, 0, C, Q)
+        return Kk[0].copy()
+
+    return solve_ivp(f, (0.0, t_end), x0, method=method, rtol=rtol, atol=atol, t_eval=t_eval)
+
+
 def l2_norm(t: np.ndarray, sig: np.ndarray) -> np.ndarray:
     """sqrt(int_0^t |sig|^2) by the trapezoidal rule over the record times; sig (K, ..., N)."""
     s2 = sig ** 2
@@ -226,3 +278,17 @@ def events(res: BatchResult, key: str = "orbit_saturated") -> list[list[tuple[st
             e.insert(0, ("enter", float(res.t[0])))
         ev.append(sorted(e, key=lambda x: x[1]))
     return ev
+
+
+def warmup_kernels() -> list[tuple[str, object]]:
+    """The compiled kernels of seed 001, as (name, build): the closed loop's kernel
+    (``lgw.sim.lunar.kernel``), built by flying the Section 5 case for 0.1 s through
+    ``simulate`` (the argument types of every run)."""
+    from lgw.sim.lunar.closed_loop import RunOptions
+    from lgw.sim.lunar.scenario import section5_case
+
+    def build() -> None:
+        ctx, X0 = section5_case(opts=RunOptions(t_end=0.1))
+        simulate(ctx, X0, parallel=False)
+
+    return [("lunar", build)]

@@ -11,8 +11,9 @@ State per case (30 components, components first, case index last):
 Departures from the paper, each needed to run it, each documented:
 - The desired attitude Q_d comes from the direction of the commanded (saturated) total thrust,
   as the paper says, passed through a second-order command filter (natural frequency
-  ``cmd_wn``, damping 0.9) so that omega_d and omega_d' exist and are exact: the paper's (27)
-  needs them but does not say how they are obtained.
+  ``cmd_wn``, damping ``lgw.sim.lunar.parameters.CMD_ZETA``) so that omega_d and omega_d' exist
+  and are exact: the paper's (27) needs them but does not say how they are obtained.  The
+  default bandwidth and why: ``lgw.sim.lunar.parameters.CMD_WN``.
 - n_do uses the derived sign (claim attitude-27b).
 - u_o of (23) is the actual thrust vector (actual T, alpha_B, psi_B from the attitude) minus
   u_norm, so du of (11) contains the pointing error as well as saturation and failure.
@@ -26,37 +27,79 @@ from dataclasses import dataclass
 
 import numpy as np
 from lgw.sim.lunar import laws
+from lgw.sim.lunar import parameters as SP
 from lgw.sim.lunar import plant as PL
 from lgw.sim.lunar.reference import Reference, simplified_rhs
 from lgw.theory.lunar import parameters as P
 from lgw.theory.lunar.gains import Gains, LoopGains
 
 N_STATE = 30
-ZETA = 0.9
+ZETA = SP.CMD_ZETA
+SAT_READINGS = ("commanded", "nominal")
+FAILURES = ("atan", "step", "none")
+POINTINGS = ("coupled", "ideal")
+DT_MAX = 0.1  # s: RK4 with F2 up to ~20 1/s (dt * 20 inside RK4's stability interval 2.78)
 
 
 @dataclass(frozen=True)
 class RunOptions:
-    """Options of a run (all cases share them)."""
+    """Options of a run (all cases share them), validated on construction (named errors).
 
-    dt: float = P.DT
-    t_end: float | None = None  # default: the reference's t_f
-    sat_reading: str = "commanded"  # (24): "commanded" | "nominal"
-    failure: str = "atan"  # (26) "atan" | "step" | "none"
-    t_fail: float | None = None  # default t_f / 2
+    ``dt``: RK4 step, s (default ``lgw.sim.lunar.parameters.DT``: chosen by convergence);
+    ``t_end``: horizon, s (default the reference's t_f); ``sat_reading``: the T of (24);
+    ``failure``: (26) "atan" as printed, "step" or "none", at ``t_fail`` s (default t_f/2) to
+    the fraction ``Ta``; ``thrust_max`` N, ``torque_max`` N m, ``dist_amp`` N m;
+    ``cmd_wn``: the command filter's natural frequency, rad/s
+    (``lgw.sim.lunar.parameters.CMD_WN``); ``thrust_pointing``: "coupled" (the thrust points
+    along the body axis of the simulated attitude (2)) or "ideal" (along the command: the
+    orbit loop alone, as (22) treats u_o as the input; the attitude loop still flies,
+    decoupled); ``m_dry`` kg: chosen, seed 001 gives none; 1 t below the reference's final
+    mass of 3012 kg, so the Section 5 case and its neighbours never reach it: the compiled
+    simulator stops a case there, outcome "propellant_exhausted"."""
+
+    dt: float = SP.DT
+    t_end: float | None = None
+    sat_reading: str = "commanded"
+    failure: str = "atan"
+    t_fail: float | None = None
     Ta: float = P.T_A
     thrust_max: float = P.T_MAX
     torque_max: float = P.M_MAX
     dist_amp: float = P.DIST_TORQUE_AMP
-    cmd_wn: float = 2.0  # rad/s, command filter of the desired attitude (chosen)
-    # "coupled": the thrust points along the body axis of the simulated attitude (2);
-    # "ideal": the thrust points along the commanded direction (the orbit loop alone, as (22)
-    # treats u_o as the input; the attitude loop still flies, decoupled from the orbit).
+    cmd_wn: float = SP.CMD_WN
     thrust_pointing: str = "coupled"
-    # kg, dry mass (chosen: seed 001 gives none; 1 t below the reference's final mass of
-    # 3012 kg, so the Section 5 case and its neighbours never reach it): the compiled
-    # simulator stops a case there, outcome "propellant_exhausted"
     m_dry: float = 2000.0
+
+    def __post_init__(self) -> None:
+        import math
+
+        from lgw.theory.errors import ParameterError
+
+        def num(name: str, lo: float, hi: float, lo_open: bool = True,
+                none: bool = False) -> None:
+            v = getattr(self, name)
+            if v is None and none:
+                return
+            ok = (isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
+                  and (v > lo if lo_open else v >= lo) and v <= hi)
+            if not ok:
+                raise ParameterError(f"RunOptions.{name}", v, f"must be a number in "
+                                     f"{'(' if lo_open else '['}{lo:g}, {hi:g}]")
+
+        num("dt", 0.0, DT_MAX)
+        num("t_end", 0.0, 1e5, none=True)
+        num("t_fail", 0.0, 1e5, lo_open=False, none=True)
+        num("Ta", 0.0, 1.0)
+        num("thrust_max", 0.0, 1e9)
+        num("torque_max", 0.0, 1e9)
+        num("dist_amp", 0.0, 1e9, lo_open=False)
+        num("cmd_wn", 0.0, 1e3)
+        num("m_dry", 0.0, 1e9, lo_open=False)
+        for name, allowed in (("sat_reading", SAT_READINGS), ("failure", FAILURES),
+                              ("thrust_pointing", POINTINGS)):
+            if getattr(self, name) not in allowed:
+                raise ParameterError(f"RunOptions.{name}", getattr(self, name),
+                                     f"one of {', '.join(allowed)}")
 
 
 def gain_arrays(gs: list[LoopGains]) -> dict[str, np.ndarray]:
@@ -184,7 +227,7 @@ def field(t: float, X: np.ndarray, ctx: Context, outputs: bool = False):
     # the lumped disturbance of (22b), d_o = e_v' - B0 u_o = e_v' + u_o/m, along the run
     Vd_dot = simplified_rhs(t, rs, ctx.ref.a1, ctx.ref.a2, ctx.ref.a3)[1:4]
     d_o = (ydot[3:6] - Vd_dot[:, None]) + (T * n_act - unorm) / m
-    out = {"eh": eh, "ev": ev, "d_orbit": d_o, "eq": eQ, "ew": ew, "thrust": T,
+    out = {"eh": eh, "ev": ev, "d_orbit": d_o, "eq": eQ, "ew": ew, "thrust": T, "force": F,
            "thrust_cmd": np.linalg.norm(uco + unorm, axis=0), "torque": M, "torque_cmd": Mc,
            "orbit_saturated": np.linalg.norm(uco + unorm, axis=0) >= o.thrust_max,
            "torque_saturated": np.any(np.abs(Mc) >= o.torque_max, axis=0),

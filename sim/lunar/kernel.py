@@ -53,7 +53,7 @@ XPKTC = 54
 XBLOWN = 55
 NX = 56
 # outcome codes (names in lgw.sim.lunar.outcomes.OUTCOMES)
-COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM, BLOWN = range(7)
+COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM, BLOWN, BELOW = range(8)
 # A delivered thrust above BLOWUP_ACCEL m0 (N; m0 the case's initial mass) is no thrust (1e5
 # m/s^2, ~10^4 g, as seed 000's lgw.sim.mars.batch.BLOWUP_ACCEL; the Section 5 case asks for
 # ~7 m/s^2): a step whose stage asks for it (or for any thrust at a mass <= 0) is far too large
@@ -63,16 +63,24 @@ COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM, BLOWN = range(7)
 BLOWUP_ACCEL = 1e5
 # tracker slots
 (PKT, PKTC, PKM, TSO, TSA, NENT, TENT, TEXIT, TFAIL, TEXC, V2OMAX, V2AMAX, HMIN, OUT, TOUT,
- PKTS, PKTCS) = range(17)
-NS = 17
+ PKTS, PKTCS, TAI, TAFT, TSOAF, PKTCAF, EHMAX, EVMAX, EHMAXAF, MINEQ0, L2BO, L2BA) = range(27)
+NS = 27
 # peak_thrust, peak_thrust_cmd: at the nodes (t = 0 and each accepted step's left node);
 # peak_thrust_stages, peak_thrust_cmd_stages: also over every rhs evaluation of those steps
 # (trial states and new node; >= the node peaks), as seed 000 (lgw.sim.mars.batch)
+# time_saturated_orbit_after_failure, peak_thrust_cmd_after_failure, max_abs_eh_after_failure:
+# over the accepted nodes from t_after (C) on (NaN: the case stopped before t_after);
+# max_abs_eh, max_abs_ev, min_abs_eq0: over the accepted nodes (the Monte Carlo statistics, no
+# records); B0du_orbit_L2, B0du_attitude_L2: sqrt of the integral of |B0 du|^2 over the flight
+# (left-node rule on every accepted step; the inputs of (18))
 RESULT_FIELDS = ("outcome", "t_outcome", "peak_thrust", "peak_thrust_cmd", "peak_torque",
                  "time_saturated_orbit", "time_saturated_torque", "sat_entries",
                  "sat_first_entry", "sat_last_exit", "t_failure", "thrust_excess_saturated",
                  "V2o_part_max", "V2a_part_max", "min_height", "peak_thrust_stages",
-                 "peak_thrust_cmd_stages")
+                 "peak_thrust_cmd_stages", "time_saturated_orbit_after_failure",
+                 "peak_thrust_cmd_after_failure", "max_abs_eh", "max_abs_ev",
+                 "max_abs_eh_after_failure", "min_abs_eq0", "B0du_orbit_L2",
+                 "B0du_attitude_L2")
 ZETA = 0.9  # damping of the desired-attitude command filter (lgw.sim.lunar.closed_loop.ZETA)
 TINY = 1e-150  # ||z2|| floor of the adaptive term (lgw.sim.lunar.laws.TINY)
 
@@ -176,12 +184,24 @@ def sys_init(i, C, Q, y, S):  # noqa: N803
     S[HMIN] = y[0] - R_MOON  # noqa: F821
     S[OUT] = COMPLETED  # noqa: F821
     S[TOUT] = math.nan  # noqa: F821
+    S[TAI] = C[9][i]  # noqa: F821  (this case's T_a, for the failure-time level)
+    S[TAFT] = C[11][i]  # noqa: F821
+    S[TSOAF] = math.nan  # noqa: F821
+    S[PKTCAF] = math.nan  # noqa: F821
+    S[EHMAX] = 0.0  # noqa: F821
+    S[EVMAX] = 0.0  # noqa: F821
+    S[EHMAXAF] = math.nan  # noqa: F821
+    S[MINEQ0] = math.inf  # noqa: F821
+    S[L2BO] = 0.0  # noqa: F821
+    S[L2BA] = 0.0  # noqa: F821
 
 
 def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     """The closed loop (lgw.sim.lunar.closed_loop.field, term by term) at (t, Y[yr])."""
-    X0, K1o, F2o, f3o, qo, K1a, F2a, f3a, qa = C
-    (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, Ta, tc, damp, wn, pointc, J, m_dry,
+    X0, K1o, F2o, f3o, qo, K1a, F2a, f3a, qa, TaC, tcC, taftC = C
+    Ta = TaC[i]
+    tc = tcC[i]
+    (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, damp, wn, pointc, J, m_dry,
      qtol) = Q
     y = Y[yr]
     r = y[0]
@@ -450,7 +470,7 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
 
 def _node_metrics(t, XL, X, S, C, Q, frac, h):  # noqa: N803
     """Metrics of one step from its left node (XL), over the fraction ``frac`` it ran."""
-    (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, Ta, tc, damp, wn, pointc, J, m_dry,
+    (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, damp, wn, pointc, J, m_dry,
      qtol) = Q
     S[PKT] = max(S[PKT], XL[14])  # noqa: F821
     S[PKTC] = max(S[PKTC], XL[15])  # noqa: F821
@@ -464,6 +484,22 @@ def _node_metrics(t, XL, X, S, C, Q, frac, h):  # noqa: N803
         S[TEXC] = max(S[TEXC], XL[14] - XL[44] * Tmax)  # noqa: F821
     if XL[23] != 0.0:
         S[TSA] += frac * h  # noqa: F821
+    eh = abs(XL[0])
+    ev = math.sqrt(XL[1] * XL[1] + XL[2] * XL[2] + XL[3] * XL[3])
+    S[EHMAX] = max(S[EHMAX], eh)  # noqa: F821
+    S[EVMAX] = max(S[EVMAX], ev)  # noqa: F821
+    S[MINEQ0] = min(S[MINEQ0], abs(XL[7]))  # noqa: F821
+    S[L2BO] += frac * h * (XL[36] * XL[36] + XL[37] * XL[37] + XL[38] * XL[38])  # noqa: F821
+    S[L2BA] += frac * h * (XL[39] * XL[39] + XL[40] * XL[40] + XL[41] * XL[41])  # noqa: F821
+    if t >= S[TAFT]:  # noqa: F821  (after the failure: from t_after on)
+        if math.isnan(S[TSOAF]):  # noqa: F821
+            S[TSOAF] = 0.0  # noqa: F821
+            S[PKTCAF] = 0.0  # noqa: F821
+            S[EHMAXAF] = 0.0  # noqa: F821
+        if XL[22] != 0.0:
+            S[TSOAF] += frac * h  # noqa: F821
+        S[PKTCAF] = max(S[PKTCAF], XL[15])  # noqa: F821
+        S[EHMAXAF] = max(S[EHMAXAF], eh)  # noqa: F821
     S[V2OMAX] = max(S[V2OMAX], XL[34])  # noqa: F821
     S[V2AMAX] = max(S[V2AMAX], XL[35])  # noqa: F821
     if frac >= 1.0:
@@ -474,14 +510,14 @@ def _node_metrics(t, XL, X, S, C, Q, frac, h):  # noqa: N803
                     S[TENT] = t + h  # noqa: F821
             else:
                 S[TEXIT] = t + h  # noqa: F821
-        lev = 0.5 * (1.0 + Ta)  # the failure: the thrust fraction crosses half-way to T_a
+        lev = 0.5 * (1.0 + S[TAI])  # noqa: F821  (the fraction crosses half-way to T_a)
         if math.isnan(S[TFAIL]) and XL[44] > lev >= X[44]:  # noqa: F821
             S[TFAIL] = t + h * (XL[44] - lev) / (XL[44] - X[44])  # noqa: F821
 
 
 def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
     """Outcomes at t = 0: a non-finite state, r below the surface, dry, a non-unit Q."""
-    (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, Ta, tc, damp, wn, pointc, J, m_dry,
+    (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, damp, wn, pointc, J, m_dry,
      qtol) = Q
     if X[22] != 0.0:
         S[NENT] = 1.0  # noqa: F821
@@ -493,7 +529,7 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
             return True
     code = COMPLETED  # noqa: F821
     if y[0] < R_MOON:  # noqa: F821
-        code = SURFACE  # noqa: F821
+        code = BELOW  # noqa: F821  (starts below the surface: named, not flown)
     elif y[6] <= m_dry:
         code = DRY  # noqa: F821
     elif X[43] > qtol:
@@ -510,7 +546,7 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
 def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
     """Surface contact and dry mass (located inside the step), quaternion-norm drift (at the
     node), and the step's metrics."""
-    (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, Ta, tc, damp, wn, pointc, J, m_dry,
+    (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, damp, wn, pointc, J, m_dry,
      qtol) = Q
     if X[XBLOWN] != 0.0:  # noqa: F821
         # a blown-up command at a stage of this step: the step is not accepted and the case
@@ -556,7 +592,7 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
 
 def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     (outc, tout, pkt, pktc, pkm, tso, tsa, nent, tent, texit, tfail, texc, v2o, v2a,
-     hmin, pkts, pktcs) = R
+     hmin, pkts, pktcs, tsoaf, pktcaf, ehmax, evmax, ehmaxaf, mineq0, l2bo, l2ba) = R
     outc[i] = int(S[OUT])  # noqa: F821
     tout[i] = S[TOUT] if S[OUT] != COMPLETED else t  # noqa: F821
     pkt[i] = S[PKT]  # noqa: F821
@@ -574,14 +610,24 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     hmin[i] = S[HMIN]  # noqa: F821
     pkts[i] = S[PKTS]  # noqa: F821
     pktcs[i] = S[PKTCS]  # noqa: F821
+    tsoaf[i] = S[TSOAF]  # noqa: F821
+    pktcaf[i] = S[PKTCAF]  # noqa: F821
+    ehmax[i] = S[EHMAX]  # noqa: F821
+    evmax[i] = S[EVMAX]  # noqa: F821
+    ehmaxaf[i] = S[EHMAXAF]  # noqa: F821
+    mineq0[i] = S[MINEQ0]  # noqa: F821
+    l2bo[i] = math.sqrt(S[L2BO])  # noqa: F821
+    l2ba[i] = math.sqrt(S[L2BA])  # noqa: F821
 
 
 HOOKS = (sys_init, sys_rhs, _node_metrics, sys_start, sys_step, sys_finish)
 SLOTS = {"PKT": PKT, "PKTC": PKTC, "PKM": PKM, "TSO": TSO, "TSA": TSA, "NENT": NENT,
          "TENT": TENT, "TEXIT": TEXIT, "TFAIL": TFAIL, "TEXC": TEXC, "V2OMAX": V2OMAX,
          "V2AMAX": V2AMAX, "HMIN": HMIN, "OUT": OUT, "TOUT": TOUT, "PKTS": PKTS,
-         "PKTCS": PKTCS, "XPKT": XPKT, "XPKTC": XPKTC, "XBLOWN": XBLOWN, "BLOWN": BLOWN,
-         "COMPLETED": COMPLETED,
+         "PKTCS": PKTCS, "TAI": TAI, "TAFT": TAFT, "TSOAF": TSOAF, "PKTCAF": PKTCAF,
+         "EHMAX": EHMAX, "EVMAX": EVMAX, "EHMAXAF": EHMAXAF, "MINEQ0": MINEQ0,
+         "L2BO": L2BO, "L2BA": L2BA, "XPKT": XPKT, "XPKTC": XPKTC, "XBLOWN": XBLOWN, "BLOWN": BLOWN,
+         "COMPLETED": COMPLETED, "BELOW": BELOW,
          "SURFACE": SURFACE, "DRY": DRY, "QUAT": QUAT, "NONFINITE": NONFINITE}
 CONSTS = {"BLOW_ACC": BLOWUP_ACCEL, "R_MOON": P.R_MOON, "MU_MOON": P.MU_MOON,
           "T_NOMINAL": P.T_NOMINAL, "ISP": P.ISP, "G0": P.G0, "ZETA": ZETA, "TINY": TINY}
@@ -589,9 +635,9 @@ CONSTS = {"BLOW_ACC": BLOWUP_ACCEL, "R_MOON": P.R_MOON, "MU_MOON": P.MU_MOON,
 
 def hooks_source() -> str:
     """The hooks as written into a kernel module, with their slots and constants."""
+    from lgw.sim.integrate import hook_jit
     src = [inspect.getsource(f) + "\n" for f in HOOKS]
-    jit = [f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', inline='always')"
-           for f in HOOKS if f is not _node_metrics]
+    jit = hook_jit(f.__name__ for f in HOOKS if f is not _node_metrics)
     return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
                       "from lgw.sim.lunar.kernel import _cross, _dcm, _mv, _qmul, _spline", "",
                       *(f"{k} = {v!r}" for k, v in {**SLOTS, **CONSTS}.items()), "",
@@ -617,11 +663,11 @@ def kernel_text() -> str:
 
 @functools.cache
 def kernel_module():
-    """The generated kernel module of seed 001's closed loop (``kernel_parallel``,
-    ``kernel_serial``, ``case_fn`` and the generated law), from the disk cache, keyed by its
-    text (``lgw.sim.kernel_cache.module_for``)."""
+    """The generated kernel module of seed 001's closed loop (``kernel`` and the generated
+    law), from the disk cache, keyed by its text and found by its inputs
+    (``lgw.sim.kernel_cache.generated_module``)."""
     from lgw.sim import kernel_cache
-    return kernel_cache.module_for("lunar_kernel", kernel_text(), _deps())
+    return kernel_cache.generated_module("lunar_kernel", kernel_text, _deps())
 
 
 _deps()  # read the sources the kernel imports now, at this module's import (see _deps)

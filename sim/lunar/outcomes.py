@@ -1,13 +1,17 @@
 """Seed 001's per-case outcomes: every case ends in exactly one, with its time.
 
 The kernel (``lgw.sim.lunar.kernel``) stops a case at the first of these and records it; the
-names follow ``lgw.sim.results`` where the meaning is the same ("nonfinite", "step_limit",
-"propellant_exhausted"); seed 001 has no landing criterion (the reference ends at h_f = 100 m
-above the surface at t_f), so a case that reaches t_end is "completed":
+names are the shared vocabulary's (``lgw.sim.results``, one meaning each); seed 001 has no
+landing criterion (the reference ends at h_f = 100 m above the surface at t_f), so a case that
+reaches t_end is "completed", and a contact with the surface is always a crash:
 
   "completed"              reached t_end inside the model's domain; time: t_end;
-  "surface_contact"        r fell below the lunar radius R_MOON; time: the crossing, located on
-                           the cubic Hermite interpolant of r inside the step;
+  "crashed"                r fell below the lunar radius R_MOON (the first crossing of the
+                           surface, lgw.sim.results); time: the crossing, located on the cubic
+                           Hermite interpolant of r inside the step, where the case ends (its
+                           end state is the contact: ``impact_speed_mps`` = |(u, v, w)|,
+                           ``impact_vertical_speed_mps`` = w, downward);
+  "below_surface"          r < R_MOON at t = 0: not flown; time 0;
   "propellant_exhausted"   the mass reached the dry mass ``RunOptions.m_dry``; time: the
                            crossing, located likewise;
   "quaternion_drift"       | ||Q|| - 1 | > QUAT_NORM_TOL (the integration does not renormalise
@@ -26,10 +30,18 @@ above the surface at t_f), so a case that reaches t_end is "completed":
 from __future__ import annotations
 
 import numpy as np
+from lgw.sim.results import names as _shared
 
-OUTCOMES = ("completed", "surface_contact", "propellant_exhausted", "quaternion_drift",
-            "nonfinite", "step_limit", "command_blown_up")
-DOMAIN_EXITS = OUTCOMES[1:4]
+# s after the failure time from which "after the failure" is measured: the atan of (26) has a
+# half-width of 0.5 s (its argument 2t - t_f is in seconds), so at +5 s the thrust fraction is
+# within 2 % of (1 - T_a) of T_a (chosen; seed 001 says "after the failure" without a time)
+AFTER_FAILURE_S = 5.0
+
+# indexed by the kernel's codes (lgw.sim.lunar.kernel: COMPLETED, SURFACE, DRY, QUAT,
+# NONFINITE, STEPLIM, BLOWN, BELOW)
+OUTCOMES = _shared("completed", "crashed", "propellant_exhausted", "quaternion_drift",
+                   "nonfinite", "step_limit", "command_blown_up", "below_surface")
+DOMAIN_EXITS = (*OUTCOMES[1:4], "below_surface")
 
 
 def counts(code: np.ndarray) -> dict[str, int]:
@@ -71,4 +83,8 @@ def case_record(results: dict, i: int) -> dict:
         rec[k] = results[k][i]
     rec["mass_final_kg"] = results["y_end"][i, 6]
     rec["steps"] = results["steps"][i]
+    if rec["outcome"] == "crashed":  # the end state is the located contact
+        uvw = np.asarray(results["y_end"][i, 3:6], float)
+        rec["impact_speed_mps"] = float(np.linalg.norm(uvw))
+        rec["impact_vertical_speed_mps"] = float(uvw[2])
     return json_safe(rec)

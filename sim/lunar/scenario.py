@@ -10,10 +10,11 @@ violates it, re-flown at half the step (the re-check a refutation needs).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cache
+from typing import Any
 
 import numpy as np
 import sympy as sp
+from lgw.sim.lunar import parameters as SP
 from lgw.sim.lunar.batch import BatchResult, events, l2_norm, rk4_batch
 from lgw.sim.lunar.closed_loop import RunOptions, initial_state, make_context
 from lgw.sim.lunar.reference import reference
@@ -54,17 +55,28 @@ def _max(a: np.ndarray) -> float:
 
 
 def summarize(res: BatchResult, ctx, i: int = 0) -> Summary:
+    """The numbers of case i of a recorded run.  Times saturated are counted over the samples
+    while the case flew (t up to its outcome time): a stopped case's records are frozen at
+    its last node and must not count as saturated after it stopped."""
+    from lgw.sim.lunar.outcomes import AFTER_FAILURE_S
+
     o, t = res.out, res.t
     t_fail = ctx.tf / 2 if ctx.opts.t_fail is None else ctx.opts.t_fail
-    after = t > t_fail + 5.0  # past the atan transition (half-width 0.5 s)
-    sat = o["orbit_saturated"][:, i]
-    tsat = o["torque_saturated"][:, i]
-    dt_rec = np.diff(t, append=t[-1])
+    t_stop = float(t[-1])
+    if res.cases and "t_outcome" in res.cases:
+        t_stop = min(t_stop, float(res.cases["t_outcome"][i]))
+    flying = t < t_stop  # the sample starts an interval the case flew
+    # past the atan transition (half-width 0.5 s), while the case flew
+    after = (t > t_fail + AFTER_FAILURE_S) & (t <= t_stop)
+    sat = o["orbit_saturated"][:, i] & flying
+    tsat = o["torque_saturated"][:, i] & flying
+    dt_rec = np.minimum(np.diff(t, append=t[-1]), np.maximum(t_stop - t, 0.0))
     Jd = P.J_DIAG
     dnorm = P.DIST_TORQUE_AMP * np.sqrt(1 + np.cos(2 * t) ** 2)
     n = {
-        "t_f": float(t[-1]), "t_fail": float(t_fail),
+        "t_f": float(t[-1]), "t_fail": float(t_fail), "t_stop": t_stop,
         "eh_final_m": float(o["eh"][-1, i]), "ev_final_m_s": o["ev"][-1, :, i].tolist(),
+        "ev_final_norm_m_s": float(np.linalg.norm(o["ev"][-1, :, i])),
         "max_abs_eh_m": float(np.max(np.abs(o["eh"][:, i]))),
         "max_abs_eh_after_failure_m": _max(np.abs(o["eh"][after, i])),
         "thrust_cmd_max_after_failure_N": _max(o["thrust_cmd"][after, i]),
@@ -88,14 +100,116 @@ def summarize(res: BatchResult, ctx, i: int = 0) -> Summary:
         "B0du_attitude_L2": float(l2_norm(t, o["B0du_a"])[i]),
         "flagged": [f for f in res.flagged if f[0] == i],
     }
+    c = res.cases
+    if c and "time_saturated_orbit_after_failure" in c:
+        n.update(case_numbers(c, ctx, i))
     return Summary(n)
 
 
-@cache
-def section5_runs(dt: float = P.DT) -> tuple:
-    ctx, X0 = section5_case(opts=RunOptions(dt=dt))
-    res = rk4_batch(ctx, X0, record_every=max(1, int(round(0.1 / dt))))
-    return ctx, res, summarize(res, ctx)
+def case_numbers(c: dict, ctx, i: int = 0) -> dict:
+    """The numbers of case i from a compiled run's per-case results alone (``res.cases``; no
+    records needed, so campaigns and refined runs carry them in flat memory): final errors
+    against the reference at the case's end time, and the run's own measures over every
+    accepted step up to the case's outcome."""
+    y = c["y_end"][i]
+    t_end = float(c["t_end"][i])
+    rs = ctx.ref.state(t_end)
+    ev = y[3:6] - rs[1:4]
+    eh = float(y[0] - rs[0])
+    return {"eh_final_m": eh, "ev_final_m_s": ev.tolist(),
+            "ev_final_norm_m_s": float(np.linalg.norm(ev)),
+            "orbit_saturated_s": float(c["time_saturated_orbit"][i]),
+            "orbit_saturated_after_failure_s": _zero_if_nan(
+                c["time_saturated_orbit_after_failure"][i]),
+            "torque_saturated_s": float(c["time_saturated_torque"][i]),
+            "thrust_cmd_max_after_failure_N": float(c["peak_thrust_cmd_after_failure"][i]),
+            "max_abs_eh_m": max(float(c["max_abs_eh"][i]), abs(eh)),
+            "max_abs_ev_m_s": max(float(c["max_abs_ev"][i]), float(np.linalg.norm(ev))),
+            "max_abs_eh_after_failure_m": float(c["max_abs_eh_after_failure"][i]),
+            "min_abs_eq0": float(c["min_abs_eq0"][i]),
+            "B0du_orbit_L2": float(c["B0du_orbit_L2"][i]),
+            "B0du_attitude_L2": float(c["B0du_attitude_L2"][i]),
+            "d0e_orbit_final": float(y[11]), "d0e_attitude_final": float(y[25]),
+            "mass_final_kg": float(y[6]),
+            "outcome": _outcome_name(c["outcome"][i]),
+            "t_outcome_s": float(c["t_outcome"][i])}
+
+
+def _zero_if_nan(x: float) -> float:
+    """A time saturated after the failure of a case that stopped before it: 0 s."""
+    return 0.0 if np.isnan(x) else float(x)
+
+
+def _outcome_name(code) -> str:
+    from lgw.sim.lunar.outcomes import OUTCOMES
+
+    return OUTCOMES[int(code)]
+
+
+@dataclass
+class Flight:
+    """One flown case with its numbers and their convergence check (``convergence`` None when
+    not checked)."""
+
+    ctx: Any
+    res: BatchResult
+    summary: Summary
+    convergence: Any = None
+
+
+_FLIGHTS: dict[str, Flight] = {}
+
+
+def _key(*parts: Any) -> str:
+    import json
+
+    from lgw.sim.lunar.outcomes import json_safe
+
+    return json.dumps(json_safe([p.to_dict() if hasattr(p, "to_dict") else
+                                 (p.__dict__ if hasattr(p, "__dict__") else p)
+                                 for p in parts]), sort_keys=True)
+
+
+def fly_section5(gains: Gains | None = None, opts: RunOptions | None = None, *,
+                 check: bool = True, record_every_s: float = 0.1) -> Flight:
+    """The Section 5 case (or another gain set / options on the Section 5 initial errors),
+    recorded every ``record_every_s`` s, with its quoted numbers checked against the run at
+    dt / ``lgw.sim.lunar.convergence.REFINE`` (``check``).  Cached per process (the report,
+    its figures and its claims share one flight)."""
+    from dataclasses import replace
+
+    from lgw.sim.lunar import convergence as CV
+    from lgw.sim.lunar.batch import simulate
+
+    g = gains or paper_gains()
+    o = opts or RunOptions()
+    key = _key(g, o, check, record_every_s)
+    if key in _FLIGHTS:
+        return _FLIGHTS[key]
+    ctx, X0 = section5_case(g, o)
+    res = rk4_batch(ctx, X0, record_every=max(1, int(round(record_every_s / o.dt))))
+    summ = summarize(res, ctx)
+    conv = None
+    if check:
+        def fly(dt: float):
+            c2, x2 = section5_case(g, replace(o, dt=dt))
+            r2 = simulate(c2, x2, record=False)
+            n2 = case_numbers(r2.cases, c2)
+            return n2, n2["outcome"]
+
+        conv = CV.check(fly, o.dt, numbers=(summ.numbers, summ.numbers["outcome"]))
+    out = Flight(ctx, res, summ, conv)
+    _FLIGHTS[key] = out
+    return out
+
+
+def section5_runs(dt: float = SP.DT, gains: Gains | None = None,
+                  opts: RunOptions | None = None) -> tuple:
+    """(context, recorded result, summary) of the Section 5 case at step dt (unchecked)."""
+    from dataclasses import replace
+
+    f = fly_section5(gains, replace(opts or RunOptions(), dt=dt), check=False)
+    return f.ctx, f.res, f.summary
 
 
 def _judge(statement: str, margin: float, margin_fine: float | None, point: dict,
@@ -108,34 +222,43 @@ def _judge(statement: str, margin: float, margin_fine: float | None, point: dict
                                   counter=counter))
 
 
-def scenario_claims(dt: float = P.DT) -> list[Claim]:
-    """The three Section 5 statements, judged on the simulated Section 5 case."""
-    ctx, res, s = section5_runs(dt)
+def scenario_claims(dt: float | None = None, gains: Gains | None = None,
+                    opts: RunOptions | None = None) -> list[Claim]:
+    """The three Section 5 statements, judged on the simulated Section 5 case (the paper's
+    gains and the default options unless given)."""
+    from dataclasses import replace
+
+    o = opts or RunOptions()
+    if dt is not None:
+        o = replace(o, dt=dt)
+    dt = o.dt
+    ctx, res, s = section5_runs(dt, gains, o)
     fine = None
 
     def fine_summary():
         nonlocal fine
         if fine is None:
-            fine = section5_runs(dt / 2)[2]
+            fine = section5_runs(dt / 2, gains, o)[2]
         return fine
 
     dom = {"case": "Section 5 (paper gains, failure (26), saturation (24) commanded reading)"}
     # (a) saturation after the failure
-    m_a = P.T_MAX - s["thrust_cmd_max_after_failure_N"]
-    m_a2 = (P.T_MAX - fine_summary()["thrust_cmd_max_after_failure_N"]) if m_a < 0 else None
-    Tmax, Ta, Td = (sp.Rational(str(x)) for x in (P.T_MAX, P.T_A, P.T_NOMINAL))
+    m_a = o.thrust_max - s["thrust_cmd_max_after_failure_N"]
+    m_a2 = (o.thrust_max - fine_summary()["thrust_cmd_max_after_failure_N"]) if m_a < 0 \
+        else None
+    Tmax, Ta, Td = (sp.Rational(str(x)) for x in (o.thrust_max, o.Ta, P.T_NOMINAL))
     red = Tmax * Ta - Td
     w_red = Witness({"T_max": str(Tmax), "T_a": str(Ta), "T_d": str(Td)}, float(red),
                     "T_max T_a - T_d (exact rationals)", float(sp.N(red, 60)), "60 digits")
-    red_step = Step("T_max T_a >= T_d: after the failure the 34 kN limit still delivers the "
-                    "nominal 24 kN (otherwise the command must saturate whenever the loop "
-                    "needs the nominal thrust)", Inequality(red, "sympy", answer=bool(red >= 0),
-                                                            counter=w_red))
+    red_step = Step(f"T_max T_a >= T_d: after the failure the {o.thrust_max:g} N limit still "
+                    f"delivers the nominal {P.T_NOMINAL:g} N (otherwise the command must "
+                    "saturate whenever the loop needs the nominal thrust)",
+                    Inequality(red, "sympy", answer=bool(red >= 0), counter=w_red))
     a = Claim("s5-no-saturation", "Section 5, (24), (26)",
               "No orbit-thrust saturation after the failure",
               "the orbit thrust saturation doesn't occur since enough redundancy is supplied",
               f"commanded thrust after t_fail + 5 s peaks at "
-              f"{s['thrust_cmd_max_after_failure_N']:.6g} N against T_max = {P.T_MAX:g} N; "
+              f"{s['thrust_cmd_max_after_failure_N']:.6g} N against T_max = {o.thrust_max:g} N; "
               f"saturated {s['orbit_saturated_after_failure_s']:.3g} s after the failure, "
               f"{s['orbit_saturated_s']:.3g} s in all",
               (red_step, _judge("T_max - max commanded thrust after the failure >= 0", m_a, m_a2,

@@ -7,8 +7,9 @@ The plant is seed 000 (10)-(14) (see ``lgw.sim.mars.plant``), the guidance any l
 Integration is classical RK4 with an explicit step ``dt`` (the default), or, with
 method="dopri5", the adaptive Dormand-Prince 5(4) pair with scipy RK45's error control (the
 method of the per-case solve_ivp loop a user would write, compiled), compiled with numba and
-run in parallel over cases (``numba.prange``); each case stops when it lands (or at t_max), so
-cases do not wait for each other and results do not depend on how cases are batched or chunked.
+run in parallel over cases (threads, ``lgw.sim.integrate.run_chunk``); each case stops when it
+lands (or at t_max), so cases do not wait for each other and results do not depend on how cases
+are batched or chunked.
 
 dopri5 is for landing statistics (landed, landing time and state, fuel, min altitude, ground
 contact): the closed loop is smooth between the arrivals of s1, s2 at 0, and the error
@@ -45,10 +46,26 @@ What is recorded per case (``BatchResult``):
     stop="t_max" also after landing); NaN if the axis never enters its band at a node.  A
     node whose command is blown up is not counted (the case ends there: at t = 0 a case
     that has landed there with such a command).  The spikes after arrival of issue 17;
-    time_saturated: node-sampled time (left-endpoint rule) with the command
-    limited on some axis, until landing; min_altitude and ground_contact (r_z < 0 before
-    landing: the paper's Fig. 8 "collision"), from the minimum of the cubic Hermite interpolant
-    of r_z over each step (not only its nodes), up to landing;
+    time_saturated: time with the command limited (on some axis, or on the norm), until the
+    outcome: where the limit's margin (|F| before the limit minus the limit), linear between
+    the nodes, is > 0 (second order in the step; a left-endpoint count of the nodes was first
+    order); min_altitude and ground_contact (r_z < 0 before
+    the outcome, a graze included), from the minimum of the cubic Hermite interpolant
+    of r_z over each step (not only its nodes), up to the outcome;
+  contact, contact_time, contact_point, impact_velocity (and the properties impact_speed,
+    crashed): the first crossing of the ground plane r_z = 0 (lgw.sim.results), located on
+    the Hermite interpolant of r_z inside the step: one descending faster than the landing
+    speed tolerance is a contact at once, a slower one (a graze: the laws chatter ~1 mm about
+    r_z = 0 at RK4's default step where z converges first) is one once r_z passes -tol_r,
+    dated at its crossing.  With stop="landing" the case ends there (at the crossing when it
+    lies in the step that confirms it: always for an impact), "landed" if the crossing state is
+    within the landing tolerance, else "crashed" with the fuel burnt to the crossing.  A command
+    that blows up while the vehicle descends closer to the ground than its stopping distance
+    at BLOWUP_ACCEL is not that outcome: no thrust could change the impact, which is recorded
+    on the ballistic arc (nanoseconds; the corrected law's command diverges as r_z -> 0 with
+    v_z != 0, so with no thrust limit every impact is preceded by such a blow-up);
+  below_surface: r_z(0) < 0 and not landed at t = 0: the case is not flown (stop="landing"),
+    outcome "below_surface";
   blown_up: a stage asked for a command that cannot be flown (BLOWUP_ACCEL below: not
     finite, above BLOWUP_ACCEL m0, or at a mass <= 0; e.g. the corrected law's |s1|^(q1-1) v
     at s1 ~ 0 with v != 0 and no thrust limit): the step is not accepted, the case ends at
@@ -94,7 +111,6 @@ from lgw.sim.integrate import (  # noqa: F401  (re-exported: the integrator's ta
 )
 from lgw.sim.kernel_cache import CompileNotice
 from lgw.sim.mars import kernel as mars_kernel
-from lgw.sim.mars import lanes as mars_lanes
 from lgw.sim.mars.disturbances import KIND_CODE, DisturbanceSpec, make_disturbance
 from lgw.sim.mars.laws import get_law, surface_params
 from lgw.sim.mars.parameters import (
@@ -116,7 +132,7 @@ from lgw.sim.options import (  # noqa: F401  (re-exported)
     StoppingOptions,
     positive,
 )
-from lgw.sim.results import classify
+from lgw.sim.results import classify, names
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars.gains import Gains
 from lgw.theory.mars.parameters import AREA, G_MARS, ISP, LAND_POS_TOL, LAND_VEL_TOL, M_DRY
@@ -129,11 +145,16 @@ ARRAY_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thru
                 "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact", "t_s1",
                 "t_s2", "t_s1_last_exit", "t_s2_last_exit", "nonfinite", "fuel_exhausted",
                 "t_end", "y_end", "steps", "step_limit", "blown_up", "peak_thrust_stages",
-                "peak_thrust_unsat_stages", "peak_thrust_after_arrival")
+                "peak_thrust_unsat_stages", "peak_thrust_after_arrival", "contact",
+                "contact_time", "contact_point", "impact_velocity", "below_surface")
 # the per-axis (N, 3) arrays among them
 VECTOR_FIELDS = ("r_land", "v_land", "peak_thrust", "peak_thrust_unsat", "t_s1", "t_s2",
                  "t_s1_last_exit", "t_s2_last_exit", "peak_thrust_stages",
-                 "peak_thrust_unsat_stages", "peak_thrust_after_arrival")
+                 "peak_thrust_unsat_stages", "peak_thrust_after_arrival", "contact_point",
+                 "impact_velocity")
+# the seed 000 outcomes of the shared vocabulary (lgw.sim.results), in report order
+OUTCOMES_USED = names("landed", "crashed", "below_surface", "propellant_exhausted",
+                      "command_blown_up", "nonfinite", "step_limit", "horizon")
 assert set(ARRAY_FIELDS) == set(mars_kernel.RESULT_FIELDS) | set(integrate.GENERIC_FIELDS)
 
 # Seed 000's integration defaults (values and their reasons in lgw.sim.mars.parameters).
@@ -189,6 +210,11 @@ class BatchResult:
     peak_thrust_stages: np.ndarray
     peak_thrust_unsat_stages: np.ndarray
     peak_thrust_after_arrival: np.ndarray
+    contact: np.ndarray
+    contact_time: np.ndarray
+    contact_point: np.ndarray
+    impact_velocity: np.ndarray
+    below_surface: np.ndarray
     eps: float
     dt: float
     r0: np.ndarray | None = None
@@ -199,6 +225,16 @@ class BatchResult:
 
     def __len__(self) -> int:
         return len(self.landed)
+
+    @property
+    def crashed(self) -> np.ndarray:
+        """Ground contact outside the landing tolerance (the outcome "crashed")."""
+        return self.contact & ~self.landed
+
+    @property
+    def impact_speed(self) -> np.ndarray:
+        """|v| at the located ground contact (m/s; NaN without a contact)."""
+        return np.linalg.norm(self.impact_velocity, axis=1)
 
     @staticmethod
     def concat(parts: list[BatchResult]) -> BatchResult:
@@ -231,7 +267,8 @@ class BatchResult:
         exactly one per case, the first that happened (see lgw.sim.results)."""
         return classify(landed=self.landed, fuel_exhausted=self.fuel_exhausted,
                         nonfinite=self.nonfinite, step_limit=self.step_limit,
-                        blown_up=self.blown_up,
+                        blown_up=self.blown_up, contact=self.contact,
+                        contact_time=self.contact_time, below_surface=self.below_surface,
                         landing_time=self.landing_time, t_end=self.t_end,
                         stop_at_outcome=self.info.get("stop", "landing") == "landing")
 
@@ -317,7 +354,7 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
                    m_dry: float = M_DRY, method: str = "rk4", rtol: float = DOPRI_RTOL,
                    atol: float = DOPRI_ATOL, max_step: float = DOPRI_MAX_STEP,
                    max_steps: int = DOPRI_MAX_STEPS,
-                   blowup_accel: float | None = None, kernel: str = "scalar") -> BatchResult:
+                   blowup_accel: float | None = None) -> BatchResult:
     """Fly N cases of seed 000's closed loop with RK4 or dopri5 (see the module docstring).
 
     The keyword front of ``simulate`` (which takes option objects): it validates the keywords,
@@ -339,7 +376,7 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
       case at landing, "t_max" keeps integrating (to observe chattering / s1, s2 after landing).
     record=True adds ``trajectory`` = {t (S,), r (N,S,3), v (N,S,3), m (N,S), F (N,S,3)}, NaN
     after a case stopped.  progress=True shows a rich progress bar over chunks of ``chunk``.
-    parallel=False runs the cases on one thread (numba prange otherwise).
+    parallel=False runs the cases on one thread (threads over pieces of a chunk otherwise).
     m_dry: dry mass (kg, default lgw.theory.mars.parameters.M_DRY = 1505), > 0 and < every m0;
       a case whose mass reaches it is ``fuel_exhausted`` (not landed if before landing) and,
       with stop="landing", ends there (see the module docstring for stop="t_max").
@@ -350,9 +387,6 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
     blowup_accel: a commanded acceleration above it (m/s^2) ends the case as
       ``command_blown_up`` (default ``BLOWUP_ACCEL``; inf: only a non-finite command does, as
       the bound checks with unlimited thrust need).
-    kernel: "scalar" (``lgw.sim.integrate``, one case at a time) or "lanes"
-      (``lgw.sim.mars.lanes``: blocks of cases stepped together, the law in SIMD across
-      them; the same results to the law's last few ulp, see docs/sim.md).
     """
     r0, v0, m0 = _check_states(r0, v0, m0)
     m_dry = check_m_dry(m_dry, m0)
@@ -360,8 +394,7 @@ def simulate_batch(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains,
                             limit=limit, dt=dt, t_max=t_max, eps=eps, drag=drag,
                             guidance_drag=guidance_drag, isp=isp, land_tol=land_tol, stop=stop)
     integration = IntegrationOptions(method=method, dt=dt, rtol=rtol, atol=atol,
-                                     max_step=max_step, max_steps=max_steps, record=record,
-                                     kernel=kernel)
+                                     max_step=max_step, max_steps=max_steps, record=record)
     stopping = StoppingOptions(stop=stop, t_max=float(t_max), land_tol=tuple(land_tol),
                                m_dry=m_dry, blowup_accel=blowup_accel)
     limits = LimitOptions(thrust_limit=thrust_limit, kind=limit)
@@ -423,10 +456,12 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
          float(stopping.m_dry),
          BLOWUP_ACCEL if stopping.blowup_accel is None else float(stopping.blowup_accel))
 
+    C, Q = integrate.kernel_args(C), integrate.kernel_args(Q)  # noqa: N806
     out = {k: np.empty((n, 3)) for k in VECTOR_FIELDS}
     out.update({k: np.empty(n) for k in ("landing_time", "fuel", "time_saturated",
-                                         "min_altitude")})
-    out.update({k: np.zeros(n, bool) for k in ("landed", "ground_contact", "fuel_exhausted")})
+                                         "min_altitude", "contact_time")})
+    out.update({k: np.zeros(n, bool) for k in ("landed", "ground_contact", "fuel_exhausted",
+                                               "contact", "below_surface")})
     out["blown_up"] = np.zeros(n)  # the kernel's code: 0, 1 too large, 2 not finite
     out.update(integrate.generic_outputs(n, mars_kernel.NY))
     R = tuple(out[k] for k in mars_kernel.RESULT_FIELDS)  # noqa: N806
@@ -436,14 +471,11 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
     rec_y = np.full(shape_rec + (mars_kernel.NY,), np.nan)
     rec_x = np.full(shape_rec + (mars_kernel.NX,), np.nan)
 
-    lanes = integration.kernel == "lanes"
-    mod = mars_lanes.kernel_module(law) if lanes else mars_kernel.kernel_module(law)
-    kernel = mod.kernel_parallel if parallel else mod.kernel_serial
-    notice = CompileNotice(kernel, f"the mars/{law} {'lane ' if lanes else ''}kernel"
-                           f"{'' if parallel else ' (serial)'}", expected="~30-60 s")
+    kernel = mars_kernel.kernel_module(law).kernel
+    notice = CompileNotice(kernel, f"the mars/{law} kernel", expected="~10-20 s")
 
     def run(sl: slice) -> None:
-        integrate.run_chunk(kernel, sl, C, Q, R, O, G, rec_y, rec_x)
+        integrate.run_chunk(kernel, sl, C, Q, R, O, G, rec_y, rec_x, parallel)
 
     with notice:
         executors.run_local(run, n, chunk, progress=progress)
@@ -465,6 +497,9 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
             "thrust_limit": lim, "limit": limits.kind if lim is not None else None,
             "drag": drag, "guidance_drag": guidance_drag or drag, "isp": isp,
             "land_tol": list(stopping.land_tol), "t_max": t_max, "seed": None,
+            # ground contact (lgw.sim.results): r_z below -contact_tol after a crossing of
+            # r_z = 0; the landing position tolerance
+            "contact_tol": stopping.land_tol[0],
             "stop": stopping.stop, "m_dry": stopping.m_dry,
             "integrator": (f"RK4 fixed step dt={integration.dt} s (numba)"
                            if integration.method == "rk4" else
@@ -472,11 +507,24 @@ def simulate(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
                            f"max_step={integration.max_step} s, first step {integration.dt} s "
                            "(numba)"),
             "boundary_layer": None}
-    if lanes:  # (the scalar kernel's records stay as they were)
-        info["kernel"] = "lanes"
     return BatchResult(eps=float(eps), dt=float(integration.dt), r0=r0, v0=v0, m0=m0,
                        trajectory=traj, info=info, **out)
 
 
 def result_fields() -> tuple[str, ...]:
     return tuple(f.name for f in fields(BatchResult))
+
+
+def warmup_kernels() -> list[tuple[str, Any]]:
+    """The compiled kernels of seed 000, as (name, build): one per registered law (the
+    integrator with the law inlined, ``lgw.sim.mars.kernel``), each built by flying one
+    Table I case for 0.1 s through ``simulate_batch`` (the argument types of every run)."""
+    from lgw.sim.mars.laws import LAWS
+    from lgw.theory.mars.gains import default_gains
+    from lgw.theory.mars.parameters import M0, R0, V0
+
+    def build(law: str) -> None:
+        simulate_batch(R0[None], V0[None], [M0], default_gains(), law=law, t_max=0.1,
+                       dt=0.05, parallel=False)
+
+    return [(f"mars/{law}", lambda law=law: build(law)) for law in LAWS]

@@ -21,14 +21,15 @@ import math
 import shutil
 import tempfile
 import weakref
-from collections.abc import Iterator
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from lgw.sim import executors
-from lgw.sim.mars.batch import ARRAY_FIELDS, BatchResult, simulate_batch
+from lgw.sim.mars.batch import ARRAY_FIELDS, OUTCOMES_USED, BatchResult, simulate_batch
 from lgw.sim.results import OUTCOMES, counts
+from lgw.sim.stats import finite_stats
 from lgw.theory.errors import ParameterError
 from lgw.theory.inputs import read_csv_columns
 from lgw.theory.mars.gains import Gains
@@ -76,6 +77,9 @@ def table1_state() -> States:
     return R0[None].copy(), V0[None].copy(), np.array([M0])
 
 
+M0_MAX = 1e9  # kg: m0 x 2.2e-16 x the steps of a run stays below a gram of fuel
+
+
 def read_states_csv(path: str | Path) -> States:
     """Read explicit initial states: a header with columns rx, ry, rz, vx, vy, vz, m (any order,
     extra columns ignored), one case per row; SI units (``lgw.theory.inputs.read_csv_columns``:
@@ -83,10 +87,12 @@ def read_states_csv(path: str | Path) -> States:
     name = "--initial-states"
     cols = read_csv_columns(path, name, CSV_COLUMNS)
     data = np.column_stack([cols[c] for c in CSV_COLUMNS])
-    bad = np.flatnonzero(data[:, 6] <= 0)
+    bad = np.flatnonzero(~((data[:, 6] > 0) & (data[:, 6] <= M0_MAX)))
     if bad.size:
-        raise ParameterError(f"{name} row {bad[0] + 2} column m", data[bad[0], 6],
-                             "must be > 0 (kg)")
+        raise ParameterError(f"{name} row {bad[0] + 2} column m", float(data[bad[0], 6]),
+                             f"must be in (0, {M0_MAX:g}] kg (above, the propellant burnt "
+                             "is lost in the rounding of the mass: 1e30 kg saturated at 50 kN "
+                             "for 120 s would show 0 kg of fuel)")
     return data[:, :3], data[:, 3:6], data[:, 6]
 
 
@@ -135,108 +141,86 @@ def run_campaign(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *
 
 # --- summaries ------------------------------------------------------------------------------
 
-def _stats(x: np.ndarray) -> dict[str, float | None]:
-    x = np.asarray(x, float)
-    x = x[np.isfinite(x)]
-    if x.size == 0:
-        return {"min": None, "median": None, "max": None}
-    return {"min": float(x.min()), "median": float(np.median(x)), "max": float(x.max())}
-
-
-def _chunks(res: BatchResult | SpilledResult) -> Iterator[slice]:
-    return iter(chunk_slices(len(res), SPILL_CHUNK)) if len(res) else iter(())
-
-
-def _column(res: BatchResult | SpilledResult, name: str, sl: slice) -> np.ndarray:
-    if isinstance(res, SpilledResult):
-        return res.column(name, sl)
-    return getattr(res, name)[sl]
-
-
-def _gather(res: BatchResult | SpilledResult, name: str, keep: np.ndarray | None,
-            fn: Any = None) -> np.ndarray:
-    """fn(array ``name``)[keep], read SPILL_CHUNK cases at a time (a ``SpilledResult`` holds
-    one chunk of the column in memory, and the values kept)."""
-    parts = []
-    for sl in _chunks(res):
-        x = _column(res, name, sl)
-        x = x if fn is None else fn(x)
-        parts.append(x if keep is None else x[keep[sl]])
-    return np.concatenate(parts) if parts else np.array([])
+def _stats(x: np.ndarray, include: np.ndarray | None = None) -> dict[str, float | int | None]:
+    """min / mean / median / max over the finite values of the included cases, with how many
+    were summarised (n) and how many left out (excluded: not included, or not finite), never
+    an impossible aggregate (lgw.sim.stats.finite_stats)."""
+    return finite_stats(x, include)
 
 
 def summarize(res: BatchResult | SpilledResult) -> dict[str, Any]:
-    """Min / median / max over landed cases, and the counts, with eps and dt.  The per-case
-    arrays are read a chunk at a time (``_gather``): what a million cases hold at once is the
-    values of one statistic (8 bytes per case) and the flags (1 byte each)."""
-    landed = res.landed
-    nonfinite = res.nonfinite
-    ok = landed & ~nonfinite
-    outcomes = counts(np.array([], int))
-    for sl in _chunks(res):
-        for k, v in counts(result_rows(res, sl).outcomes()[0]).items():
-            outcomes[k] += v
-
-    def norm(x: np.ndarray) -> np.ndarray:
-        return np.linalg.norm(x, axis=1)
-
-    def axes(name: str, keep: np.ndarray | None = ok) -> dict[str, dict[str, float | None]]:
-        return {ax: _stats(_gather(res, name, keep, lambda x, i=i: x[:, i]))
-                for i, ax in enumerate("xyz")}
-
-    def arrived(i: int) -> dict[str, float | None]:
-        a = _gather(res, "peak_thrust_after_arrival", None, lambda x: x[:, i])
-        return {**_stats(a), "arrived": int(np.sum(np.isfinite(a)))}
+    """Counts per outcome, and statistics over the cases of each quantity's outcome (landed
+    cases for the landing numbers, crashed cases for the impact), with eps and dt.  Each
+    statistic says how many cases it summarises and how many it leaves out.  From a
+    ``SpilledResult`` each per-case array is read when it is used and dropped after: a million
+    cases hold a few columns at a time (8-24 bytes per case each)."""
+    code, _ = res.outcomes()
+    landed = code == OUTCOMES.index("landed")
+    crashed = code == OUTCOMES.index("crashed")
+    ok = landed & ~res.nonfinite
+    err = np.linalg.norm(res.r_land, axis=1)
     out: dict[str, Any] = {
         "cases": len(res), "landed": int(landed.sum()),
-        "not_landed": int((~landed).sum()), "nonfinite": int(nonfinite.sum()),
+        "not_landed": int((~landed).sum()), "nonfinite": int(res.nonfinite.sum()),
+        # the ground plane met before the outcome: "crashed", or a touchdown within the landing
+        # tolerance (landed); below_surface: r_z(0) < 0, not flown
+        "crashed": int(crashed.sum()), "below_surface": int(res.below_surface.sum()),
         "ground_contact": int(res.ground_contact.sum()),
         # the mass reached the dry mass before landing (lgw.sim.mars.batch: the case stops there)
-        "fuel_exhausted": int(np.sum(res.fuel_exhausted & ~landed)),
+        "fuel_exhausted": int(np.sum(res.fuel_exhausted & ~res.landed)),
         "m_dry": res.info.get("m_dry", M_DRY),
         # dopri5 only: the case needed more than max_steps attempts and stopped unfinished
         "step_limit": int(res.step_limit.sum()),
         # one outcome per case (lgw.sim.results: the first that happened), every outcome
         # listed; the flags above may overlap, these do not and sum to "cases"
-        "outcomes": outcomes,
-        "landing_error_m": _stats(_gather(res, "r_land", ok, norm)),
-        "landing_speed_mps": _stats(_gather(res, "v_land", ok, norm)),
-        "landing_time_s": _stats(_gather(res, "landing_time", ok)),
-        "fuel_kg": _stats(_gather(res, "fuel", ok)),
+        "outcomes": counts(code, OUTCOMES_USED),
+        "landing_error_m": _stats(err, ok),
+        "landing_speed_mps": _stats(np.linalg.norm(res.v_land, axis=1), ok),
+        "landing_time_s": _stats(res.landing_time, ok),
+        "fuel_kg": _stats(res.fuel, ok),
         # node peaks (the tuner's measure) and stage peaks (every rhs evaluation of the
         # accepted steps, >= the node peaks; lgw.sim.mars.batch), over landed cases
-        "peak_thrust_N": axes("peak_thrust"),
-        "peak_thrust_stages_N": axes("peak_thrust_stages"),
-        "peak_thrust_unsat_stages_N": axes("peak_thrust_unsat_stages"),
+        "peak_thrust_N": {ax: _stats(res.peak_thrust[:, i], ok) for i, ax in enumerate("xyz")},
+        "peak_thrust_stages_N": {ax: _stats(res.peak_thrust_stages[:, i], ok)
+                                 for i, ax in enumerate("xyz")},
+        "peak_thrust_unsat_stages_N": {ax: _stats(res.peak_thrust_unsat_stages[:, i], ok)
+                                       for i, ax in enumerate("xyz")},
         # per axis, max |F_i| from its first node in the landing band on, over every case
         # whose axis got there ("arrived": how many did)
-        "peak_thrust_after_arrival_N": {ax: arrived(i) for i, ax in enumerate("xyz")},
-        "time_saturated_s": _stats(_gather(res, "time_saturated", ok)),
-        # over all cases, up to landing (negative: below ground, see ground_contact)
-        "min_altitude_m": _stats(_gather(res, "min_altitude", None)),
+        "peak_thrust_after_arrival_N": {
+            ax: {**_stats(res.peak_thrust_after_arrival[:, i]),
+                 "arrived": int(np.sum(np.isfinite(res.peak_thrust_after_arrival[:, i])))}
+            for i, ax in enumerate("xyz")},
+        "time_saturated_s": _stats(res.time_saturated, ok),
+        # over all cases, up to the outcome (negative: below ground, see ground_contact)
+        "min_altitude_m": _stats(res.min_altitude),
+        # the crashes: impact speed and time at the located contact
+        "impact_speed_mps": _stats(res.impact_speed, crashed),
+        "contact_time_s": _stats(res.contact_time, crashed),
         "eps": res.eps, "dt": res.dt,
     }
-    out["settings"] = {k: v for k, v in res.info.items()}
-    if nonfinite.any():
-        idx = np.flatnonzero(nonfinite)
-        r0, v0, m0, t_end = (getattr(res, k)[idx] for k in ("r0", "v0", "m0", "t_end"))
+    out["settings"] = {k: v for k, v in res.info.items() if k != "refined_dt"}
+    if res.nonfinite.any():
+        idx = np.flatnonzero(res.nonfinite)
+        r0, v0, m0, t_end = (take(res, k, idx) for k in ("r0", "v0", "m0", "t_end"))
         out["nonfinite_cases"] = [{"case": int(i), "r0": r0[j].tolist(), "v0": v0[j].tolist(),
                                    "m0": float(m0[j]), "t_end": float(t_end[j])}
                                   for j, i in enumerate(idx)]
     return out
 
 
-def _num(x: float) -> float | None:
-    return float(x) if np.isfinite(x) else None
-
-
-# the record's per-case arrays, in the record's order (after "case")
+# the case record's keys, in order: "case", the per-case arrays (RECORD_ARRAYS, "impact_speed"
+# and "below_surface" among them), then the run's and the outcome's
 RECORD_ARRAYS = ("r0", "v0", "m0", "landed", "landing_time", "r_land", "v_land", "fuel",
                  "peak_thrust", "peak_thrust_unsat", "peak_thrust_stages",
                  "peak_thrust_unsat_stages", "peak_thrust_after_arrival", "time_saturated",
                  "min_altitude", "ground_contact", "t_s1", "t_s2", "t_s1_last_exit",
                  "t_s2_last_exit", "nonfinite", "fuel_exhausted", "step_limit", "steps",
-                 "t_end")
+                 "t_end",
+                 # the ground contact (lgw.sim.results): time, point and velocity at the
+                 # crossing, |velocity| there
+                 "contact_time", "contact_point", "impact_velocity", "impact_speed",
+                 "below_surface")
 RECORD_CHUNK = 4096  # cases turned into records at a time
 
 
@@ -251,7 +235,8 @@ def _listed(a: np.ndarray) -> list:
     return a.tolist()
 
 
-def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]:
+def case_records(res: BatchResult | SpilledResult, n: int | None = None
+                 ) -> list[dict[str, Any]]:
     """One JSON-ready record per case (NaN -> null); the first ``n`` cases only if given."""
     return list(iter_case_records(res, n))
 
@@ -261,6 +246,8 @@ def iter_case_records(res: BatchResult | SpilledResult, n: int | None = None
     """``case_records`` one at a time, made RECORD_CHUNK cases at a time from whole columns
     (``tolist``, not one numpy scalar per value); from a ``SpilledResult`` in flat memory."""
     total = len(res) if n is None else min(n, len(res))
+    # the RK4 step of a case refined until its outcome settled (lgw.sim.mars.converged)
+    refined = res.info.get("refined_dt", {})
     for a in range(0, total, RECORD_CHUNK):
         part = result_rows(res, slice(a, min(a + RECORD_CHUNK, total)))
         code, t_out = part.outcomes()
@@ -271,6 +258,7 @@ def iter_case_records(res: BatchResult | SpilledResult, n: int | None = None
         for j, vals in enumerate(zip(*cols, strict=True)):
             rec = {"case": a + j}
             rec.update(zip(RECORD_ARRAYS, vals, strict=True))
+            rec["refined_dt"] = refined.get(a + j)
             rec["eps"] = eps
             # the case's one outcome (lgw.sim.results.OUTCOMES) and its time, s
             rec["outcome"] = outcome[j]
@@ -278,28 +266,32 @@ def iter_case_records(res: BatchResult | SpilledResult, n: int | None = None
             yield rec
 
 
-def iter_case_json(res: BatchResult | SpilledResult, n: int | None = None) -> Iterator[str]:
-    """The case records as JSON text, RECORD_CHUNK at a time, each run of records joined by
-    "," (the items of a JSON array; strict JSON: non-finite values are already null)."""
-    buf: list[str] = []
-    for rec in iter_case_records(res, n):
-        buf.append(json.dumps(rec, allow_nan=False))
-        if len(buf) == RECORD_CHUNK:
-            yield ",".join(buf)
-            buf = []
-    if buf:
-        yield ",".join(buf)
+Records = Callable[[Iterator[dict[str, Any]]], Iterable[dict[str, Any]]]
 
 
 class CaseJson:
-    """``iter_case_json(res, n)`` as an iterable that starts afresh at each iteration (for
-    ``Stream(encoded=...)``: a document may be written twice, to --out and to stdout)."""
+    """The case records of ``res`` (the first ``n``; each passed through ``post`` if given) as
+    JSON text, RECORD_CHUNK records at a time joined by "," (items of a JSON array, strict
+    JSON: non-finite values are already null), for ``lgw.tuning.io.Stream(encoded=...)``: the
+    same bytes as the records written one by one, without a walk over every value.  Each
+    iteration starts afresh (a document may be written twice: --out and stdout)."""
 
-    def __init__(self, res: BatchResult | SpilledResult, n: int | None = None) -> None:
-        self.res, self.n = res, n
+    def __init__(self, res: BatchResult | SpilledResult, n: int | None = None,
+                 post: Records | None = None) -> None:
+        self.res, self.n, self.post = res, n, post
 
     def __iter__(self) -> Iterator[str]:
-        return iter_case_json(self.res, self.n)
+        recs: Iterable[dict[str, Any]] = iter_case_records(self.res, self.n)
+        if self.post is not None:
+            recs = self.post(recs)
+        buf: list[str] = []
+        for rec in recs:
+            buf.append(json.dumps(rec, allow_nan=False))
+            if len(buf) == RECORD_CHUNK:
+                yield ",".join(buf)
+                buf = []
+        if buf:
+            yield ",".join(buf)
 
 
 # --- campaigns kept on disk -----------------------------------------------------------------
@@ -313,10 +305,11 @@ class SpilledResult:
     are in memory at a time while it is flown), in a temporary folder removed with the object.
 
     It reads as a ``BatchResult``: every per-case array is an attribute (read from disk at each
-    access: a summary reads one or a few whole columns at a time, never all of them),
-    ``len``, ``outcomes()``, ``eps``, ``dt``, ``info``; ``rows(sl)`` is the ``BatchResult`` of
-    cases ``sl``.  So a million cases take a few columns of memory (8-24 bytes per case each)
-    instead of every array of every case (~500 bytes per case)."""
+    access: a summary reads one or a few whole columns at a time, never all of them), ``len``,
+    ``outcomes()``, ``crashed``, ``impact_speed``, ``eps``, ``dt``, ``info``, ``with_rows``
+    (in place: a copy would double the campaign on disk); ``rows(sl)`` and ``take(idx)`` are
+    the ``BatchResult`` of some cases.  So a million cases take a few columns of memory (8-24
+    bytes per case each) instead of every array of every case (~600 bytes per case)."""
 
     trajectory = None
 
@@ -344,6 +337,10 @@ class SpilledResult:
     def __len__(self) -> int:
         return self._n
 
+    def _map(self, name: str, mode: str = "r") -> np.memmap:
+        dtype, tail = self._layout[name]
+        return np.memmap(self.folder / name, dtype=dtype, mode=mode, shape=(self._n, *tail))
+
     def column(self, name: str, sl: slice = slice(None)) -> np.ndarray:
         """Cases ``sl`` (step 1) of the array ``name``, read from disk."""
         dtype, tail = self._layout[name]
@@ -364,8 +361,31 @@ class SpilledResult:
         kw = {k: self.column(k, sl) for k in _SPILLED}
         return BatchResult(eps=self.eps, dt=self.dt, info=self.info, **kw)
 
-    def outcomes(self) -> tuple[np.ndarray, np.ndarray]:
-        return BatchResult.outcomes(self)  # classify on the columns, as BatchResult does
+    def take(self, name: str, idx: np.ndarray) -> np.ndarray:
+        """The cases ``idx`` of the array ``name`` (only their rows are read)."""
+        if not self._n:
+            return self.column(name)[np.asarray(idx, np.int64)]
+        return np.array(self._map(name)[np.asarray(idx, np.int64)])
+
+    def with_rows(self, idx: np.ndarray, other: BatchResult) -> SpilledResult:
+        """``BatchResult.with_rows`` on disk: cases ``idx`` replaced by the cases of ``other``
+        (in order), ``info["replaced"]`` lists them; in place, and returns self."""
+        idx = np.asarray(idx, dtype=np.int64)
+        if len(idx) != len(other):
+            raise ValueError(f"with_rows: {len(idx)} indices for {len(other)} cases")
+        if len(idx):
+            for k in ARRAY_FIELDS:
+                m = self._map(k, "r+")
+                m[idx] = getattr(other, k)
+                m.flush()
+                del m
+        self.info = dict(self.info)
+        self.info["replaced"] = sorted({*self.info.get("replaced", []), *idx.tolist()})
+        return self
+
+    outcomes = BatchResult.outcomes  # classify on the columns, as BatchResult does
+    crashed = BatchResult.crashed
+    impact_speed = BatchResult.impact_speed
 
     def close(self) -> None:
         """Remove the folder now (it is removed anyway when the object is collected)."""
@@ -378,6 +398,13 @@ def result_rows(res: BatchResult | SpilledResult, sl: slice) -> BatchResult:
         return res.rows(sl)
     kw = {k: getattr(res, k)[sl] for k in _SPILLED}
     return BatchResult(eps=res.eps, dt=res.dt, info=res.info, **kw)
+
+
+def take(res: BatchResult | SpilledResult, name: str, idx: np.ndarray) -> np.ndarray:
+    """The cases ``idx`` of the per-case array ``name`` of a campaign result."""
+    if isinstance(res, SpilledResult):
+        return res.take(name, idx)
+    return getattr(res, name)[np.asarray(idx, np.int64)]
 
 
 def _run_spilled(r0, v0, m0, gains: Gains, *, chunk: int, progress: bool,

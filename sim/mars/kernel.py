@@ -1,9 +1,12 @@
 """Seed 000's client of the generic integrator (``lgw.sim.integrate``): plant, events, metrics.
 
 The hooks below are templates in the sense of ``lgw.sim.integrate``: plain Python copied into
-the generated kernel module of one law (``kernel_for``), where ``law`` is that law's generated
-code (``lgw.sim.mars.laws.law_module_source``) and the integrator's ``case`` / ``kernel`` call
-them.  What they compute is documented in ``lgw.sim.mars.batch``.
+generated modules, where ``law`` is a law's generated code (``lgw.sim.mars.laws.law_source``)
+and the integrator's ``kernel`` calls them.  Each law has a kernel module of its own (the law is
+inlined into the vector field: passed in as a function, or picked by a switch in one kernel
+for every law, it ran 25-60 % slower, docs/sim.md); the hooks run once per case are compiled
+once in a shared module (``hooks_module``) that every law's kernel imports.  What they
+compute is documented in ``lgw.sim.mars.batch``.
 
 State y = [r (3), v (3), m] (seed 000 (10)-(14)); auxiliary outputs X = [F (3) after the
 thrust limit, F (3) before it, s2 (3) of (21), the law's acceleration a (3), stage peaks and the
@@ -55,13 +58,23 @@ PKS = 31  # 3: peak |F| after the limit over every rhs evaluation of the accepte
 PKUS = 34  # 3: before
 PKA = 37  # 3: peak |F_i| after the limit from the first node in axis i's landing band on (NaN
 #           until then; the band: |r_i| <= tol_r and |v_i| <= tol_v)
-NS = 40
+# ground contact (lgw.sim.results: the first crossing of r_z = 0 that goes deeper than the
+# contact tolerance tol_r ends the case, dated at the crossing itself)
+CONT = 40  # 1.0 once the contact is confirmed (before any other outcome)
+OPEN = 41  # 1.0 while r_z < 0 since a crossing not yet deeper than tol_r (a graze, so far)
+XT = 42  # the time of that crossing (s)
+XR = 43  # 3: r there
+XV = 46  # 3: v there
+XM = 49  # m there
+BELOW = 50  # 1.0 if the initial state is below the ground (r_z(0) < 0) and not landed
+NS = 51
 
 RESULT_FIELDS = ("landed", "landing_time", "r_land", "v_land", "fuel", "peak_thrust",
                  "peak_thrust_unsat", "time_saturated", "min_altitude", "ground_contact",
                  "t_s1", "t_s2", "t_s1_last_exit", "t_s2_last_exit", "fuel_exhausted",
                  "blown_up", "peak_thrust_stages", "peak_thrust_unsat_stages",
-                 "peak_thrust_after_arrival")
+                 "peak_thrust_after_arrival", "contact", "contact_time", "contact_point",
+                 "impact_velocity", "below_surface")
 
 
 @numba.njit(error_model="numpy", inline="always", cache=True)
@@ -107,6 +120,14 @@ def sys_init(i, C, Q, y, S):  # noqa: N803
     S[DRY] = 0.0
     S[TLAND] = math.nan
     S[BLOWN] = 0.0
+    S[CONT] = 0.0
+    S[OPEN] = 0.0
+    S[BELOW] = 0.0
+    S[XT] = math.nan
+    S[XM] = math.nan
+    for ax in range(3):
+        S[XR + ax] = math.nan
+        S[XV + ax] = math.nan
 
 
 def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
@@ -193,6 +214,17 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     K[kr, 6] = 0.0 if bad_cmd else -fn / c
 
 
+def _sat_margin(Xa, fmax, lim):  # noqa: N803
+    """How far the command before the limit (Xa[3:6], N) is beyond the thrust limit (> 0:
+    saturated): max_i |F_i| - fmax for the per-axis limit, |F| - fmax on the norm, -1 with no
+    limit."""
+    if lim == 1:
+        return max(abs(Xa[3]), abs(Xa[4]), abs(Xa[5])) - fmax
+    if lim == 2:
+        return math.sqrt(Xa[3] * Xa[3] + Xa[4] * Xa[4] + Xa[5] * Xa[5]) - fmax
+    return -1.0
+
+
 def _arrival(y, X, S, tol_r, tol_v):  # noqa: N803
     """Peak thrust after arrival at an accepted node (state y, rhs outputs X there): per axis,
     max |F_i| (after the limit) from the first node with |r_i| <= tol_r, |v_i| <= tol_v on."""
@@ -209,7 +241,8 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
      stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a) = R
+     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a, cont, t_cont, r_cont, v_cont,
+     below) = R
     for ax in range(3):
         S[SOLD + ax] = y[ax]
         S[SOLD + 3 + ax] = X[6 + ax]
@@ -224,42 +257,133 @@ def sys_start(i, y, X, S, C, Q, R):  # noqa: N803
             r_land[i, ax] = y[ax]
             v_land[i, ax] = y[3 + ax]
         fuel[i] = 0.0
-    if X[XBLOWN] != 0.0 and not (S[LANDED] != 0.0 and stop_landing):
-        S[BLOWN] = X[XBLOWN]  # the command at t = 0 is blown up: nothing can be flown
+    if S[LANDED] == 0.0 and y[2] < 0.0:
+        S[BELOW] = 1.0  # starts below the ground: named as such, never flown as a mission
+    elif S[LANDED] == 0.0 and y[2] == 0.0 and -y[5] > tol_v:
+        # on the ground, descending faster than a graze: the contact is at t = 0
+        _impact_fn(0.0, y, S, grav, 0.0)  # noqa: F821  (r_z = 0: tau = 0, any a_max)
+    stop0 = (S[LANDED] != 0.0 or S[BELOW] != 0.0 or S[CONT] != 0.0) and stop_landing
+    if X[XBLOWN] != 0.0 and not stop0:
+        # the command at t = 0 is blown up: nothing can be flown; unless no thrust could keep
+        # the vehicle off the ground, when that contact is the outcome
+        if S[LANDED] != 0.0 or S[BELOW] != 0.0 or not _impact_fn(0.0, y, S, grav,  # noqa: F821
+                                                                 blow_acc):
+            S[BLOWN] = X[XBLOWN]
         return True
     if X[XBLOWN] == 0.0:  # a blown-up command at t = 0 is never flown (landed there)
         _arrival_fn(y, X, S, tol_r, tol_v)  # noqa: F821
-    return S[LANDED] != 0.0 and stop_landing
+    return stop0
+
+
+def _impact(t, y, S, grav, a_max):  # noqa: N803
+    """At time t and state y: if descending closer to the ground than the stopping distance at
+    a_max (m/s^2; r_z >= 0, v_z < 0, r_z < v_z^2 / (2 a_max)), no thrust below a_max can keep
+    the vehicle off it: record that contact on the ballistic arc from y (the crossing is
+    tau = 2 r_z / (-v_z + sqrt(v_z^2 - 2 g_z r_z)) later; lgw.sim.mars.reference.
+    unavoidable_contact) and return True."""
+    vz = y[5]
+    if not (y[2] >= 0.0 and vz < 0.0 and 2.0 * a_max * y[2] < vz * vz):
+        return False
+    tau = 2.0 * y[2] / (-vz + math.sqrt(vz * vz - 2.0 * grav[2] * y[2]))
+    S[CONT] = 1.0
+    S[XT] = t + tau
+    for ax in range(3):
+        S[XR + ax] = y[ax] + y[3 + ax] * tau + 0.5 * grav[ax] * tau * tau
+        S[XV + ax] = y[3 + ax] + grav[ax] * tau
+    S[XM] = y[6]
+    return True
+
+
+def _ground(t, h, y, k1, yn, k1n, S, tol_r, tol_v, b):  # noqa: N803
+    """Ground contact within [0, b] of the step from (t, y) to (t + h, yn) (b <= 1: the end of
+    this step's flight so far, the dry-mass crossing): th where a confirmed contact ends the
+    case, or 2.0 (lgw.sim.results).  A crossing of r_z = 0 descending faster than tol_v is a
+    contact at once: the case ends at the crossing.  A slower one (within the landing speed
+    tolerance) is a graze while r_z stays above -tol_r (the sliding laws chatter about r_z = 0
+    by ~1 mm at RK4's default step, where z converges first); deeper, the contact is confirmed
+    and dated at that crossing (XT, XR, XV, XM), and the case ends at the crossing if it lies
+    in this step, else where the depth passed tol_r.  The crossings are the first points below
+    the level on the step's cubic Hermite interpolant of r_z (r_z' = v_z), not only nodes."""
+    p0 = y[2]
+    d0 = k1[2]
+    p1 = yn[2]
+    d1 = k1n[2]
+    thz = _herm_first_under(p0, d0, p1, d1, h, -tol_r, 0.0, b)  # noqa: F821
+    top = b if thz > 1.0 else thz  # the part of the step before a confirmation
+    thc = 2.0  # a crossing of r_z = 0 in [0, top] that opens a graze
+    if S[OPEN] != 0.0:
+        # the open graze closes where r_z comes back above 0 (-r_z below 0); a crossing may
+        # follow in the same step
+        thu = _herm_first_under(-p0, -d0, -p1, -d1, h, 0.0, 0.0, top)  # noqa: F821
+        if thu <= 1.0:
+            S[OPEN] = 0.0
+            thc = _herm_first_under(p0, d0, p1, d1, h, 0.0, thu, top)  # noqa: F821
+    else:
+        thc = _herm_first_under(p0, d0, p1, d1, h, 0.0, 0.0, top)  # noqa: F821
+    if thc <= 1.0:
+        S[OPEN] = 1.0
+        S[XT] = t + thc * h
+        for ax in range(3):
+            S[XR + ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, thc)  # noqa: F821
+            S[XV + ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax],  # noqa: F821
+                               h, thc)
+        S[XM] = _herm(y[6], k1[6], yn[6], k1n[6], h, thc)  # noqa: F821
+        if -S[XV + 2] > tol_v:  # an impact, not a graze: the contact is this crossing
+            S[CONT] = 1.0
+            S[OPEN] = 0.0
+            return thc
+    if thz > 1.0:
+        return 2.0
+    S[CONT] = 1.0
+    S[OPEN] = 0.0
+    return thc if thc <= 1.0 else thz
 
 
 def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
-    """Dry mass, s-bands, landing and the metrics of one accepted step (lgw.sim.mars.batch)."""
+    """Dry mass, ground contact, s-bands, landing and the metrics of one accepted step
+    (lgw.sim.mars.batch)."""
     r0, v0, m0, dcoef, domega, dphase = C
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
      stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a) = R
+     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a, cont, t_cont, r_cont, v_cont,
+     below) = R
     if X[XBLOWN] != 0.0:
         # a blown-up command at a stage of this step (or at its new node): the step is not
         # accepted and the case ends at its start (y, finite, every quantity physical), as
         # "command_blown_up" (lgw.sim.results); theta = 0 on the interpolant between y and
         # itself returns y exactly
-        S[BLOWN] = X[XBLOWN]
         for j in range(NY):  # noqa: F821
             yn[j] = y[j]
             k1n[j] = k1[j]
+        # unless no thrust could keep the vehicle off the ground (the corrected law's command
+        # diverges as r_z -> 0 with v_z != 0): then that impact is the outcome
+        if (S[LANDED] != 0.0 or S[DRY] != 0.0 or S[CONT] != 0.0 or S[BELOW] != 0.0
+                or not _impact_fn(t, y, S, grav, blow_acc)):  # noqa: F821
+            S[BLOWN] = X[XBLOWN]
         return STOP_INSIDE, 0.0  # noqa: F821
     has_landed = S[LANDED] != 0.0
     dry = S[DRY] != 0.0
+    # the case's outcome was reached before this step (landing, dry mass, ground contact, or
+    # it started below the ground)
+    ended = has_landed or dry or S[CONT] != 0.0 or S[BELOW] != 0.0
     # dry mass: first th with m(th) <= m_dry, bisection on the Hermite interpolant
-    ended = has_landed or dry  # the case's outcome was reached before this step
     thd = 1.0
     dry_now = False
     if not dry and yn[6] <= m_dry:
         dry_now = True
         thd = _herm_first_below(y[6], k1[6], yn[6], k1n[6], h, m_dry)  # noqa: F821
-    # with stop="landing" a case that runs dry ends at thd
-    bend = thd if stop_landing else 1.0
+    # ground contact before the outcome, up to the dry mass: the case ends at thc if confirmed
+    thc = 2.0
+    if not ended:
+        thc = _ground_fn(t, h, y, k1, yn, k1n, S, tol_r, tol_v, thd)  # noqa: F821
+    hit = thc <= 1.0
+    if hit:
+        dry_now = False  # the contact came first
+        thd = 1.0
+    thf = thc if hit else thd  # the end of this step's flight (contact or dry mass)
+    # with stop="landing" a case that runs dry or meets the ground ends at thf
+    bend = thf if stop_landing else 1.0
     # sliding-variable bands, linear between nodes (up to the dry-mass stop)
     for j in range(6):
         s_new = yn[j] if j < 3 else X[3 + j]  # s2 from the rhs call at the new node
@@ -272,7 +396,6 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
         S[SOLD + j] = s_new
     if not ended:
         # metrics until the outcome (landing or dry mass): command at the step's left node
-        sat = False
         for ax in range(3):
             # node peaks at the left node (states on the trajectory: the tuner's certificate,
             # lgw.tuning.mars.design.limit_measure, is defined on them); stage peaks also
@@ -283,15 +406,25 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
             S[PKU + ax] = max(S[PKU + ax], abs(XL[3 + ax]))
             S[PKS + ax] = max(S[PKS + ax], abs(XL[ax]), X[XPK + ax])
             S[PKUS + ax] = max(S[PKUS + ax], abs(XL[3 + ax]), X[XPKU + ax])
-            if XL[ax] != XL[3 + ax]:
-                sat = True
-        rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
-        vn = math.sqrt(yn[3] ** 2 + yn[4] ** 2 + yn[5] ** 2)
-        frac = thd
+        # landing: the criterion at the end of this step's flight (the node, or the located
+        # contact or dry mass), then its first point by bisection
+        if thf >= 1.0:
+            rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
+            vn = math.sqrt(yn[3] ** 2 + yn[4] ** 2 + yn[5] ** 2)
+        else:
+            rr = 0.0
+            vv = 0.0
+            for ax in range(3):
+                rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, thf) ** 2  # noqa: F821
+                vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h,  # noqa: F821
+                            thf) ** 2
+            rn = math.sqrt(rr)
+            vn = math.sqrt(vv)
+        frac = thf
         if rn <= tol_r and vn <= tol_v:
             # bisection on L(th) = max(|r|/tol_r, |v|/tol_v) - 1, Hermite in th
             a = 0.0
-            b = 1.0
+            b = thf
             for _ in range(BISECT_ITERS):  # noqa: F821
                 mid = 0.5 * (a + b)
                 rr = 0.0
@@ -304,8 +437,11 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
                     b = mid
                 else:
                     a = mid
-            if b <= thd:  # landed before (or as) the mass reached m_dry
+            if b <= thf:  # landed before (or as) the mass reached m_dry or the ground
                 frac = b
+                if hit:  # landed first: the contact after it is not the case's
+                    hit = False
+                    S[CONT] = 0.0
                 has_landed = True
                 S[LANDED] = 1.0
                 S[TLAND] = t + b * h
@@ -316,13 +452,39 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
                 fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)  # noqa: F821
                 if stop_landing:
                     dry_now = False  # the case ends at landing, above m_dry
+        if hit:
+            # a contact within the landing tolerance at the crossing is a touchdown
+            rc = math.sqrt(S[XR] ** 2 + S[XR + 1] ** 2 + S[XR + 2] ** 2)
+            vc = math.sqrt(S[XV] ** 2 + S[XV + 1] ** 2 + S[XV + 2] ** 2)
+            if rc <= tol_r and vc <= tol_v:
+                has_landed = True
+                S[LANDED] = 1.0
+                S[TLAND] = S[XT]
+                for ax in range(3):
+                    r_land[i, ax] = S[XR + ax]
+                    v_land[i, ax] = S[XV + ax]
+                fuel[i] = m0[i] - S[XM]
         if dry_now and not has_landed:  # out of propellant before landing
             # all of it: m = m_dry at the located crossing by definition (the Hermite value
             # there is m_dry to the bisection's 2^-60 of the step, or anything at all if a
             # blown-up stage command made the interpolant wild: fuel above the load, issue 14)
             fuel[i] = m0[i] - m_dry
-        if sat:
+        # time saturated: where the limit's margin (|F| before the limit minus the limit),
+        # linear between the step's nodes, is > 0, over the part of the step flown (a
+        # left-endpoint count would be first order: 0.45 s against 0.475 s at dt/2 on a Table
+        # III case)
+        gl = _sat_margin(XL, fmax, lim)
+        gr = _sat_margin(X, fmax, lim)
+        if gl > 0.0 and gr > 0.0:
             S[TSAT] += frac * h
+        elif gl > 0.0 or gr > 0.0:
+            ths = gl / (gl - gr)
+            if not (0.0 <= ths <= 1.0):  # an infinite margin: the left node decides
+                S[TSAT] += frac * h if gl > 0.0 else 0.0
+            elif gl > 0.0:
+                S[TSAT] += min(ths, frac) * h
+            else:
+                S[TSAT] += max(0.0, frac - ths) * h
         # lowest point of the step up to its end (landing, dry mass or the node) on the
         # Hermite interpolant: node sampling misses a dip below ground that is shorter than
         # the step (dopri5's steps are ~1 s)
@@ -335,10 +497,12 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
         S[DRY] = 1.0
         if stop_landing:  # out of propellant: the case ends at th = thd
             return STOP_INSIDE, thd  # noqa: F821
+    if hit and stop_landing:  # at the ground: the case ends at the contact
+        return STOP_INSIDE, thc  # noqa: F821
     if has_landed and stop_landing:
-        if yn[6] < m_dry and not ended:
-            # landed inside the step, and the node beyond is below the dry mass: end at the
-            # landing itself (the end state is the landed vehicle, never below m_dry)
+        if (yn[6] < m_dry or thc <= 1.0) and not ended:
+            # landed inside the step, and the node beyond is below the dry mass or the
+            # ground: end at the landing itself (the end state is the landed vehicle)
             return STOP_INSIDE, frac  # noqa: F821
         _arrival_fn(yn, X, S, tol_r, tol_v)  # noqa: F821  (the node is accepted)
         return STOP_AT_NODE, thd  # noqa: F821
@@ -351,7 +515,8 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
      stop_landing, m_dry, blow_acc) = Q
     (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a) = R
+     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a, cont, t_cont, r_cont, v_cont,
+     below) = R
     has_landed = S[LANDED] != 0.0
     dry = S[DRY] != 0.0
     landed[i] = has_landed
@@ -360,8 +525,16 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     if dry and stop_landing and not has_landed:
         y[6] = m_dry  # the case stopped at the crossing: the end state has exactly m_dry
     t_land[i] = S[TLAND]
+    below[i] = S[BELOW] != 0.0
+    cont[i] = S[CONT] != 0.0
+    t_cont[i] = S[XT] if S[CONT] != 0.0 else math.nan
+    for ax in range(3):
+        r_cont[i, ax] = S[XR + ax] if S[CONT] != 0.0 else math.nan
+        v_cont[i, ax] = S[XV + ax] if S[CONT] != 0.0 else math.nan
     if not has_landed:
-        if not dry:
+        if S[CONT] != 0.0:
+            fuel[i] = m0[i] - S[XM]  # crashed: what was burnt to the crossing
+        elif not dry:
             fuel[i] = m0[i] - y[6]
         for ax in range(3):
             r_land[i, ax] = math.nan
@@ -378,24 +551,34 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
         ts2x[i, ax] = S[TX + 3 + ax]
     tsat[i] = S[TSAT]
     minalt[i] = S[ZMIN]
-    ground[i] = S[GROUND] != 0.0
+    ground[i] = S[GROUND] != 0.0 or S[CONT] != 0.0  # a graze below r_z = 0, or the contact
 
 
-HOOKS = (sys_init, sys_rhs, _arrival, sys_start, sys_step, sys_finish)
+HOOKS = (sys_init, sys_rhs, _sat_margin, _arrival, _impact, _ground, sys_start, sys_step,
+         sys_finish)
+COMPILED_APART = (_arrival, _impact, _ground)  # called, not inlined: "<name>_fn"
+# the hooks compiled into each law's kernel module (the vector field calls the law; it and the
+# step hook are inlined, lgw.sim.integrate.INLINED_HOOKS, with the step's helper _sat_margin);
+# the others do not depend on the law and live in one shared module (``hooks_module``)
+KERNEL_HOOKS = (sys_rhs, _sat_margin, sys_step)
 SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "ZMIN": ZMIN,
          "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND, "BLOWN": BLOWN,
-         "PKS": PKS, "PKUS": PKUS, "PKA": PKA, "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN}
+         "PKS": PKS, "PKUS": PKUS, "PKA": PKA, "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN,
+         "CONT": CONT, "OPEN": OPEN, "XT": XT, "XR": XR, "XV": XV, "XM": XM, "BELOW": BELOW}
 
 
-def hooks_source() -> str:
-    """The hooks as written into a kernel module, with the tracker slots they use."""
+def hooks_source(hooks=HOOKS, cache: bool = False) -> str:
+    """``hooks`` as written into a generated module, with the tracker slots they use."""
+    from lgw.sim.integrate import hook_jit
     slots = "\n".join(f"{k} = {v}" for k, v in SLOTS.items())
+    opts = ", cache=True" if cache else ""
     return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
                       "from lgw.sim.mars.kernel import _drag, _drag_fac", "", slots, "",
-                      *(inspect.getsource(f) + "\n" for f in HOOKS),
-                      "_arrival_fn = numba.njit(_arrival, error_model='numpy')",
-                      *(f"{f.__name__} = numba.njit({f.__name__}, error_model='numpy', "
-                        "inline='always')" for f in HOOKS if f is not _arrival)])
+                      *(inspect.getsource(f) + "\n" for f in hooks),
+                      *(f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy'{opts})"
+                        for f in hooks if f in COMPILED_APART),
+                      *hook_jit((f.__name__ for f in hooks if f not in COMPILED_APART), cache,
+                                inline=("_sat_margin",))])
 
 
 # --- assembly -------------------------------------------------------------------------------
@@ -413,12 +596,35 @@ def _prefix(kind: str, name: str) -> str:
     return f"mars_{kind}_{slug}"
 
 
+SIZES = {"NY": NY, "NX": NX, "NS": NS}
+
+
+def hooks_text() -> str:
+    """The full text of the generated module of the hooks that do not call the law."""
+    from lgw.sim import integrate
+    shared = tuple(f for f in HOOKS if f not in KERNEL_HOOKS)
+    return integrate.hooks_module_source(hooks_source(shared, cache=True), SIZES)
+
+
+@functools.cache
+def hooks_module():
+    """The generated module of the law-independent hooks (compiled once, numba-cached), which
+    every law's kernel module imports."""
+    from lgw.sim import kernel_cache
+    return kernel_cache.generated_module("mars_hooks", hooks_text, _deps())
+
+
 def kernel_text(spec) -> str:
-    """The full text of the generated kernel module of law ``spec`` (what the cache keys)."""
+    """The full text of the generated kernel module of law ``spec`` (what the cache keys): the
+    law's generated code, the shared hooks imported from ``hooks_module``, the inlined hooks
+    (``KERNEL_HOOKS``), and the integrator."""
     from lgw.sim import integrate
     from lgw.sim.mars.laws import law_source
-    return integrate.kernel_module_source(law_source(spec, True), hooks_source(),
-                                          {"NY": NY, "NX": NX, "NS": NS})
+    shared = [f.__name__ + ("_fn" if f in COMPILED_APART else "") for f in HOOKS
+              if f not in KERNEL_HOOKS]
+    imports = f"from {hooks_module().__name__} import {', '.join(shared)}"
+    return integrate.kernel_module_source(law_source(spec, True),
+                                          imports + "\n" + hooks_source(KERNEL_HOOKS), SIZES)
 
 
 def law_text(spec) -> str:
@@ -431,18 +637,23 @@ def law_text(spec) -> str:
 @functools.cache
 def _kernel_module(spec):
     from lgw.sim import kernel_cache
-    return kernel_cache.module_for(_prefix("kernel", spec.name), kernel_text(spec), _deps())
+    from lgw.sim.mars.laws import law_key_parts
+    hooks_module()  # imported by the kernel module's text
+    return kernel_cache.generated_module(_prefix("kernel", spec.name), lambda: kernel_text(spec),
+                                         _deps(), law_key_parts(spec, True))
 
 
 @functools.cache
 def _law_module(spec):
     from lgw.sim import kernel_cache
-    return kernel_cache.module_for(_prefix("law", spec.name), law_text(spec), _deps())
+    from lgw.sim.mars.laws import law_key_parts
+    return kernel_cache.generated_module(_prefix("law", spec.name), lambda: law_text(spec),
+                                         _deps(), law_key_parts(spec, False))
 
 
 def kernel_module(name: str):
-    """The generated kernel module of law ``name`` (``kernel_parallel``, ``kernel_serial``,
-    ``case_fn``, ``law``), from the disk cache (written on first use)."""
+    """The generated kernel module of law ``name`` (``kernel``, ``law``), from the disk cache
+    (written on first use)."""
     from lgw.sim.mars.laws import get_law
     return _kernel_module(get_law(name))
 

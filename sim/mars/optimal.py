@@ -266,10 +266,6 @@ def solve_fuel_optimal(
     alpha = 1.0 / (isp * G_EARTH)
     dt = tf / n
     t = np.linspace(0.0, tf, n + 1)
-    # Lightest possible mass profile [AP07]: full thrust from t = 0, never below the dry mass.
-    z_lo = np.log(np.maximum(m0 - alpha * rho_max * t, m_dry))
-    # Heaviest: minimum thrust all along (m0 when there is no lower bound).
-    z_hi = np.log(m0 - alpha * (thrust_min or 0.0) * t)
     settings = {
         "thrust_max_N": thrust_max, "limit": limit, "thrust_min_N": thrust_min,
         "isp_s": isp, "g_e": G_EARTH, "m_dry_kg": m_dry, "m0_kg": m0,
@@ -279,6 +275,19 @@ def solve_fuel_optimal(
                  if thrust_min else "convex as is (no lower thrust bound)"),
         "solver": "CLARABEL",
     }
+    if thrust_min and alpha * thrust_min * tf >= m0 - m_dry:
+        # The minimum thrust alone burns the whole propellant before tf: infeasible, and the
+        # heaviest-mass profile below would take the log of a mass <= 0 (NaN problem data).
+        settings["infeasible_reason"] = (
+            f"the minimum thrust {thrust_min:g} N alone burns {alpha * thrust_min * tf:.6g} kg "
+            f"in tf = {tf:g} s, more than the {m0 - m_dry:.6g} kg of propellant")
+        e2 = np.zeros((0, 3))
+        return OptimalSolution("infeasible", math.nan, t, e2, e2, np.zeros(0), e2, 0.0,
+                               math.nan, tf, n, settings=settings)
+    # Lightest possible mass profile [AP07]: full thrust from t = 0, never below the dry mass.
+    z_lo = np.log(np.maximum(m0 - alpha * rho_max * t, m_dry))
+    # Heaviest: minimum thrust all along (m0 when there is no lower bound; > m_dry, above).
+    z_hi = np.log(m0 - alpha * (thrust_min or 0.0) * t)
 
     # Scaled unknowns keep the conic solver well conditioned: km for r, 100 m/s for v.
     R, V = 1000.0, 100.0
@@ -342,10 +351,17 @@ def solve_fuel_optimal(
         delta_used = np.array(delta.value)
         delta.value = _zoh_force_correction(np.array(u.value), np.exp(np.array(z.value)), dt)
 
-    zv = np.array(z.value)
     uv = np.array(u.value)
     sv = np.array(sigma.value)
-    m = np.exp(zv)
+    # The mass follows from the SOCP's own exact dynamics z_{k+1} = z_k - alpha dt sigma_k from
+    # m0, not from exp(z) as solved: the solver's residual (~1e-9 in z) would otherwise make the
+    # fuel of a nearly free descent (a huge Isp) negative and the final mass exceed m0.  sigma
+    # below 0 is solver noise (sigma >= ||u|| >= 0); the dry-mass floor holds z_n >= ln m_dry
+    # to the solver's tolerance exactly.
+    burn = alpha * dt * np.concatenate([[0.0], np.cumsum(np.maximum(sv, 0.0))])
+    m = np.maximum(m0 * np.exp(-burn), m_dry)
+    m[0] = m0
+    fuel = float(min(-m0 * math.expm1(-burn[-1]), m0 - m_dry))
     unorm = np.linalg.norm(uv, axis=1)
     gap = float(np.max(sv - unorm))
     F = uv * _log_mean(m[:-1], m[1:])[:, None]
@@ -355,7 +371,7 @@ def solve_fuel_optimal(
     settings["solves"] = refine + 1
     settings["clarabel_time_s"] = solver_time  # the interior-point iterations only
     return OptimalSolution(
-        status=str(prob.status), fuel=float(m0 - m[-1]), t=t,
+        status=str(prob.status), fuel=fuel, t=t,
         r=np.array(r.value), v=np.array(v.value), m=m, F=F, solve_time=elapsed,
         tightness=gap / max(float(sv.max()), 1e-12), tf=tf, n=n, u=uv, sigma=sv,
         tightness_abs=gap, settings=settings,
@@ -444,6 +460,34 @@ def min_time(
             lo = mid
     return MinTimeResult(tf_min=hi, bracket=(lo, hi), iterations=len(history), solution=best,
                          history=history)
+
+
+def max_time(
+    r0: Any,
+    v0: Any,
+    m0: float,
+    tf_feasible: float,
+    tf_infeasible: float,
+    *,
+    tol: float = 0.02,
+    **kw: Any,
+) -> float:
+    """Longest feasible tf between a feasible ``tf_feasible`` and an infeasible longer
+    ``tf_infeasible`` (bisection on feasibility, to ``tol`` seconds; ``kw``: the keywords of
+    :func:`solve_fuel_optimal`).  Past it the propellant runs out: hovering and braking cost
+    fuel, and a lower thrust bound burns it whether needed or not.  Returns the feasible end
+    of the final bracket."""
+    tol = _positive("tol", tol, "must be a finite number > 0 s")
+    lo, hi = float(tf_feasible), float(tf_infeasible)
+    if not 0.0 < lo < hi:
+        raise ParameterError("tf_infeasible", hi, f"must be > tf_feasible = {lo:g} s")
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        if solve_fuel_optimal(r0, v0, m0, mid, **kw).feasible:
+            lo = mid
+        else:
+            hi = mid
+    return lo
 
 
 # --- open-loop replay ----------------------------------------------------------------------

@@ -127,15 +127,33 @@ def after_arrival(r: np.ndarray, v: np.ndarray, f: np.ndarray,
     return out
 
 
+def unavoidable_contact(y: np.ndarray, g_z: float, a_max: float) -> float | None:
+    """Time (s) to the ground crossing from state y (7,) if no thrust below ``a_max`` (m/s^2)
+    can prevent it (descending, r_z >= 0 and r_z < v_z^2 / (2 a_max): the stopping distance at
+    a_max exceeds the altitude), on the ballistic arc r_z + v_z tau + g_z tau^2 / 2 = 0; else
+    None.  The corrected law's command diverges as r_z -> 0 with v_z != 0, so with unlimited
+    thrust it blows up (lgw.sim.mars.batch.BLOWUP_ACCEL) just above the ground, within
+    nanoseconds of an impact it can no longer change: that impact is the case's outcome, as
+    in lgw.sim.mars.kernel.sys_step."""
+    z, vz = float(y[2]), float(y[5])
+    if not (z >= 0.0 and vz < 0.0 and 2.0 * a_max * z < vz * vz):
+        return None
+    return 2.0 * z / (-vz + np.sqrt(vz * vz - 2.0 * g_z * z))
+
+
 def _start_row(rhs: ClosedLoopRHS, y0: np.ndarray, eps: float, landed0: bool, *,
                t: float = 0.0, y: np.ndarray | None = None, nonfinite: bool = False,
-               blown: bool = False, land_tol: tuple[float, float] = LAND_TOL) -> dict:
-    """A case that ends without a solution: landed or blown up at t = 0, or a derivative
-    that became non-finite at (t, y) (solve_ivp cannot return a partial solution; see
-    ``simulate_reference``): the state there and the t = 0 band entries.  Peaks: the
+               blown: bool = False, land_tol: tuple[float, float] = LAND_TOL,
+               below: bool = False, contact_at: tuple[float, np.ndarray] | None = None
+               ) -> dict:
+    """A case that ends without a solution: landed, below the ground or blown up at t = 0, or
+    a derivative that became non-finite at (t, y) (solve_ivp cannot return a partial solution;
+    see ``simulate_reference``): the state there and the t = 0 band entries.  Peaks: the
     as simulate_batch's, 0 (no step was flown); after arrival: the t = 0 command on the axes
     in their band unless it is blown up (as simulate_batch, NaN otherwise)."""
     y = y0 if y is None else y
+    contact = contact_at is not None
+    t_c, y_c = contact_at if contact else (np.nan, np.full(7, np.nan))
     after = np.full(3, np.nan)
     if not (blown or rhs.blown(y0)):  # as simulate_batch: a blown-up command is never flown
         after = after_arrival(y0[None, :3], y0[None, 3:6], rhs.force(y0[None, :])[0], land_tol)
@@ -152,7 +170,8 @@ def _start_row(rhs: ClosedLoopRHS, y0: np.ndarray, eps: float, landed0: bool, *,
             "t_end": float(t), "y_end": y, "steps": 0, "step_limit": False,
             "blown_up": blown, "peak_thrust_stages": np.zeros(3),
             "peak_thrust_unsat_stages": np.zeros(3), "peak_thrust_after_arrival": after,
-            "sol": None}
+            "contact": contact, "contact_time": t_c, "contact_point": y_c[:3],
+            "impact_velocity": y_c[3:6], "below_surface": below, "sol": None}
 
 
 def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
@@ -191,12 +210,35 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
     blown.terminal = True  # the case cannot go on (as in simulate_batch)
     blown.direction = -1
 
+    def ground(t, y):  # crossings of the ground plane r_z = 0 (lgw.sim.results)
+        return y[2]
+    ground.direction = -1
+
+    def deep(t, y):  # a crossing deeper than the contact tolerance confirms the contact
+        return y[2] + tr
+    deep.terminal = stop == "landing"
+    deep.direction = -1
+
     events = ([landing] + [band(j, -1) for j in range(6)] + [band(j, 1) for j in range(6)]
-              + [dry, blown])
+              + [dry, blown, ground, deep])
     landed0 = bool(landing(0.0, y0) <= 0)
+    below0 = bool(y0[2] < 0) and not landed0
     if landed0 and stop == "landing":  # as simulate_batch: landed at t = 0, nothing to fly
         return _start_row(rhs, y0, eps, True, land_tol=land_tol)
+    if below0 and stop == "landing":  # as simulate_batch: below the ground, nothing to fly
+        return _start_row(rhs, y0, eps, False, land_tol=land_tol, below=True)
+    if y0[2] == 0.0 and -y0[5] > tv and not landed0:
+        # on the ground descending faster than a graze: the contact is at t = 0 (solve_ivp
+        # reports no event at its first point)
+        return _start_row(rhs, y0, eps, False, land_tol=land_tol, contact_at=(0.0, y0))
     if rhs.blown(y0):  # the command at t = 0 cannot be flown (nonfinite too if it is not finite)
+        tau = None if landed0 or below0 else unavoidable_contact(y0, float(G_MARS[2]),
+                                                                  BLOWUP_ACCEL)
+        if tau is not None:  # but no thrust could keep it off the ground: that is the outcome
+            y_c = y0.copy()
+            y_c[:3] += y0[3:6] * tau + 0.5 * G_MARS * tau * tau
+            y_c[3:6] += G_MARS * tau
+            return _start_row(rhs, y0, eps, False, land_tol=land_tol, contact_at=(tau, y_c))
         return _start_row(rhs, y0, eps, landed0, blown=True,
                           nonfinite=not np.all(np.isfinite(rhs.force(y0)[0])),
                           land_tol=land_tol)
@@ -211,8 +253,35 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
     t_dry = sol.t_events[13][0] if len(sol.t_events[13]) else np.inf
     t_blow = sol.t_events[14][0] if len(sol.t_events[14]) else np.inf
     tl = 0.0 if landed0 else (sol.t_events[0][0] if len(sol.t_events[0]) else np.nan)
-    if not tl <= min(t_dry, t_blow):  # ran dry or blew up first: not landed
+    # ground contact (as simulate_batch, lgw.sim.results): the first crossing of r_z = 0
+    # descending faster than tol_v, or a slower one followed by r_z below -tol_r (confirmed
+    # there, dated at the latest crossing before it, or t = 0 when it starts on the ground);
+    # not tracked for a case that starts below it.  t_deep: where it is confirmed
+    t_deep = t_cont = np.inf
+    if not below0:
+        fast = np.flatnonzero(-sol.y_events[15][:, 5] > tv) if len(sol.t_events[15]) else []
+        t_fast = sol.t_events[15][fast[0]] if len(fast) else np.inf
+        t_slow = sol.t_events[16][0] if len(sol.t_events[16]) else np.inf
+        if t_fast <= t_slow:
+            t_deep = t_cont = t_fast
+        elif np.isfinite(t_slow):
+            cross = sol.t_events[15][sol.t_events[15] <= t_slow]
+            t_deep, t_cont = t_slow, (float(cross[-1]) if len(cross) else 0.0)
+    via_blow = False  # the contact follows a blow-up that could not change it
+    if (np.isfinite(t_blow) and not below0 and t_blow < min(t_dry, t_deep)
+            and not tl <= t_blow):
+        yb = sol.sol(t_blow)
+        tau = unavoidable_contact(yb, float(G_MARS[2]), BLOWUP_ACCEL)
+        if tau is not None:
+            via_blow = True
+            t_deep = t_cont = t_blow + tau
+            t_blow = np.inf
+    if not tl <= min(t_dry, t_blow, t_deep):  # ran dry, blew up or met the ground first
         tl = np.nan
+    if not t_deep < min(t_dry, t_blow) or np.isfinite(tl):  # the contact is not the outcome
+        t_deep = t_cont = np.inf
+    if t_cont < np.inf:  # the contact came first: dry mass or a blow-up after it are moot
+        t_dry = t_blow = np.inf
     if t_blow < t_dry and np.isnan(tl):  # as simulate_batch: the dry crossing after it is moot
         t_dry = np.inf
     tf = np.array([0.0 if abs(s0[j]) <= eps else
@@ -224,38 +293,53 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
     blown_up = bool(np.isfinite(t_blow))
     nonfinite = not np.all(np.isfinite(sol.y)) or sol.status == -1
     t_end = float(sol.t[-1])
-    t_metric = min(t_end, t_dry, t_blow) if np.isnan(tl) else tl
+    contact = bool(np.isfinite(t_cont))
+    y_cont = sol.sol(t_cont) if contact and not via_blow else np.full(7, np.nan)
+    if via_blow:  # the ballistic arc from the blow-up to the ground (nanoseconds)
+        yb = sol.y[:, -1]
+        tau = t_cont - t_end
+        y_cont = yb.copy()
+        y_cont[:3] += yb[3:6] * tau + 0.5 * G_MARS * tau * tau
+        y_cont[3:6] += G_MARS * tau
+    if contact and stop == "landing":
+        t_end = t_cont  # the case ends at the crossing of the ground
+    t_metric = min(t_end, t_dry, t_blow, t_cont) if np.isnan(tl) else tl
+    if via_blow:
+        t_metric = float(sol.t[-1])  # the metrics stop where the command blew up
     # blown up: up to the located crossing, not at it (the root finder may put it an ulp past
     # the threshold, a command that is no thrust)
-    nodes = sol.t[sol.t < t_metric] if blown_up and np.isnan(tl) else sol.t[sol.t <= t_metric]
+    nodes = (sol.t[sol.t < t_metric] if (blown_up or via_blow) and np.isnan(tl)
+             else sol.t[sol.t <= t_metric])
     grid = np.union1d(np.arange(0.0, t_metric, METRIC_GRID), nodes)
     ys = sol.sol(grid)
+    low = float(min(ys[2].min(), y_cont[2])) if contact else float(ys[2].min())
     f_sat, f_uns = rhs.force(ys.T)  # (K, 3) each
     sat = np.any(f_sat != f_uns, axis=1)
     dts = np.diff(np.append(grid, t_metric))
     y_land = sol.sol(tl) if np.isfinite(tl) else np.full(7, np.nan)
-    y_end = sol.y[:, -1].copy()
+    y_end = y_cont.copy() if contact and stop == "landing" else sol.y[:, -1].copy()
     if exhausted and stop == "landing" and np.isnan(tl):
         y_end[6] = m_dry  # the case ended at the located crossing: exactly m_dry (as batch)
-    ground = bool(np.any(ys[2] < 0))
+    ground = bool(np.any(ys[2] < 0)) or contact
     # after arrival: on the solver's nodes and the metric grid until the case ends (after
     # landing too with stop="t_max"), before a blown-up command
-    t_last = min(t_end, t_blow)
+    t_last = min(t_end, t_blow, t_metric if via_blow else np.inf)
     grid_a = np.union1d(np.arange(0.0, t_last, METRIC_GRID),
-                        sol.t[sol.t < t_last] if blown_up else sol.t[sol.t <= t_last])
+                        sol.t[sol.t < t_last] if blown_up or via_blow
+                        else sol.t[sol.t <= t_last])
     ya = sol.sol(grid_a)
     after = after_arrival(ya[:3].T, ya[3:6].T, rhs.force(ya.T)[0], land_tol)
     return {"landed": bool(np.isfinite(tl)), "landing_time": tl, "r_land": y_land[:3],
             "v_land": y_land[3:6],
             # out of propellant: all of it, m0 - m_dry (the root finder's m there is m_dry
             # to its tolerance, which may put it an ulp beyond the load)
-            "fuel": y0[6] - (y_land[6] if np.isfinite(tl) else
+            "fuel": y0[6] - (y_land[6] if np.isfinite(tl) else y_cont[6] if contact else
                              m_dry if exhausted else sol.sol(t_blow)[6] if blown_up
                              else y_end[6]),
             "fuel_exhausted": exhausted,
             "peak_thrust": np.max(np.abs(f_sat), axis=0),
             "peak_thrust_unsat": np.max(np.abs(f_uns), axis=0),
-            "time_saturated": float(np.sum(dts[sat])), "min_altitude": float(ys[2].min()),
+            "time_saturated": float(np.sum(dts[sat])), "min_altitude": low,
             "ground_contact": ground, "t_s1": tf[:3], "t_s2": tf[3:], "t_s1_last_exit": tx[:3],
             "t_s2_last_exit": tx[3:], "nonfinite": bool(nonfinite), "t_end": t_end,
             "y_end": y_end, "steps": len(sol.t) - 1, "step_limit": False,
@@ -264,7 +348,9 @@ def _one(rhs: ClosedLoopRHS, y0: np.ndarray, *, t_max: float, eps: float,
             # evaluations are not states of the solution)
             "peak_thrust_stages": np.max(np.abs(f_sat), axis=0),
             "peak_thrust_unsat_stages": np.max(np.abs(f_uns), axis=0),
-            "peak_thrust_after_arrival": after, "sol": sol}
+            "peak_thrust_after_arrival": after, "contact": contact,
+            "contact_time": t_cont if contact else np.nan, "contact_point": y_cont[:3],
+            "impact_velocity": y_cont[3:6], "below_surface": below0, "sol": sol}
 
 
 def simulate_reference(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,

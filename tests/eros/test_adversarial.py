@@ -81,7 +81,7 @@ def _check_one_outcome(res) -> None:
     name = np.array(OUTCOMES)[res.outcome]
     # the flags and the outcome say the same thing (contact and blow-up exclusive: frozen)
     assert not np.any(res.contact & res.nonfinite)
-    assert np.array_equal(name == "surface_contact", res.contact)
+    assert np.array_equal(name == "crashed", res.contact)
     assert np.array_equal(name == "nonfinite", res.nonfinite)
     P_ = eros_polyhedron()
     for i in range(n):
@@ -94,7 +94,7 @@ def _check_one_outcome(res) -> None:
         assert np.all(np.isfinite(res.pos[i])) and np.all(np.isfinite(res.vel[i]))
         coef = REF.coefficients(printed=res.options.reference == "printed")
         pos_k = REF.evaluate(coef, res.t[k])[0] + res.e[k, i]
-        if name[i] == "surface_contact":  # really inside, by the solid angles directly
+        if name[i] == "crashed":  # really inside, by the solid angles directly
             assert inside(P_, pos_k[None])[0], i
             continue
         tail = np.abs(res.e[:, i]) <= P.TRACK_TOL
@@ -131,7 +131,7 @@ def test_batched_and_reference_agree_on_the_outcome(case, g, variant):
     _check_one_outcome(b)
     assert OUTCOMES[a.outcome[0]] == OUTCOMES[b.outcome[0]]
     name = OUTCOMES[a.outcome[0]]
-    if name in ("surface_contact", "tracked"):
+    if name in ("crashed", "tracked"):
         assert a.t_outcome[0] == b.t_outcome[0]
     elif name == "nonfinite":  # which sample first overflows depends on the last digits of a
         # ~1e300 state, where the two integrators' truncation errors differ: within one sample
@@ -146,7 +146,7 @@ def test_known_adversarial_states():
                    [0.0, 0.0, -8000.0],  # start below the surface (inside Eros)
                    [1e12, -1e12, 0.0]])  # far away, finite all along
     res = simulate(e0, np.zeros_like(e0), g, opts)
-    assert [OUTCOMES[c] for c in res.outcome] == ["tracked", "surface_contact", "horizon"]
+    assert [OUTCOMES[c] for c in res.outcome] == ["tracked", "crashed", "horizon"]
     assert res.t_outcome[0] == 0.0 and res.t_outcome[1] == 0.0 and res.t_outcome[2] == 0.1
     # a terminal gain at the float limit: e' grows to ~1e298 and e' ds/de overflows
     big = simulate(np.array([[1.0, 1.0, 1.0]]), np.zeros((1, 3)), g.replace(beta=1e300),
@@ -174,5 +174,5 @@ def test_simulate_json_is_strict_and_names_the_outcomes(tmp_path):
         raise AssertionError(f"non-strict JSON token {token}")
     out = json.loads(r.stdout, parse_constant=reject)
     row = out["rows"][0]
-    assert row["outcomes"] == {"surface_contact": 0, "nonfinite": 1, "tracked": 0, "horizon": 0}
+    assert row["outcomes"] == {"crashed": 0, "nonfinite": 1, "tracked": 0, "horizon": 0}
     assert row["outcome"] == "nonfinite" and 0 <= row["t_outcome"] <= 0.1

@@ -42,7 +42,27 @@ def test_variant_names_for_the_command_line_are_the_registered_variants():
     assert tuple(variant_name(*v) for v in VARIANTS) == VARIANT_NAMES
 
 
+def test_simulate_the_whole_descent_json():
+    """Table 1's start to touchdown on the shape model through the command line: landed near
+    the reference's 0.1 m/s, the contact point and fuel reported, converged."""
+    r = lgw("simulate", "eros", "--scenario", "descent", "--law", "fuzzy-tanh", "--json")
+    assert r.returncode == 0, r.stderr
+    doc = json.loads(r.stdout)
+    assert doc["settings"]["scenario"] == "descent" and doc["gains"]["k"] == 0.01
+    row = doc["rows"][0]
+    assert row["outcomes"]["landed"] == 1 and row["converged"] == 1
+    case = row["case_records"][0]
+    assert case["outcome"] == "landed" and abs(case["touchdown"]["speed"] - 0.1) < 0.01
+    assert 2.0 < case["fuel_kg"] < 6.0 and case["touchdown"]["mesh_distance_m"] < 1e-5
+    assert -90 <= case["touchdown"]["lat_deg"] <= 90
+
+
 @pytest.mark.parametrize("args,name", [
+    (("simulate", "eros", "--thrust-max", "10"), "--thrust-max"),
+    (("simulate", "eros", "--nav"), "--nav"),
+    (("simulate", "eros", "--gravity", "polyhedron-exact"), "--gravity"),
+    (("simulate", "eros", "--scenario", "descent", "--disturbance", "known"), "--disturbance"),
+    (("simulate", "eros", "--scenario", "descent", "--srp", "-1"), "--srp"),
     (("simulate", "eros", "--law", "bogus"), "--law"),
     (("simulate", "eros", "--dt", "-1"), "dt"),
     (("bounds", "eros", "--dbar", "5"), "--dbar"),

@@ -64,7 +64,8 @@ def test_report_embeds_the_figures(tmp_path, monkeypatch):
     import lgw.sim.eros.batch as B
 
     monkeypatch.setattr(B, "SimOptions", lambda **kw: replace(SHORT, **kw))
-    r = CliRunner().invoke(report_command, ["--out", str(tmp_path), "--cases", "3"])
+    r = CliRunner().invoke(report_command, ["--out", str(tmp_path), "--cases", "3",
+                                            "--no-descent"])
     assert r.exit_code == 0, r.output
     html = (tmp_path / "report.html").read_text()
     embedded = {base64.b64decode(u) for u in

@@ -96,3 +96,27 @@ def test_sampled_tanh_limit_cycle_above_it(kdt_phi, s0):
 
     phi, k = 0.05, 2.0
     assert _tanh_map_tail(k, phi, kdt_phi * phi / k, s0) > 1e-3 * phi
+
+
+def test_ode_route_is_accurate_where_p_over_q_is_near_one():
+    """The point where the old route (absolute tolerance 1e-14 e0, not of the event level)
+    disagreed with the closed form by 9.4e-6 relative, beyond the claim's 1e-6 tolerance: the
+    event at 1e-9 e0 was located with a relative error of 1e-5 in e."""
+    r, beta, e0 = 0.8344717467688907, 0.8698009382570256, 0.0018282134380884912
+    closed = B.ts_tsm(e0, beta, r)
+    assert ode_settling_time(e0, 0.0, beta, r) == pytest.approx(closed, rel=1e-8)
+
+
+def test_settling_ode_claim_is_checked_only_within_its_tolerance(monkeypatch):
+    """A disagreement beyond the tolerance is not 'checked': it is re-solved tighter and refutes
+    only if the re-check disagrees too (here it does, with a closed form made 1e-5 wrong)."""
+    from lgw.theory.eros import claims as C
+
+    C.settling_ode_claim.cache_clear()
+    real = B.ts_tsm
+    monkeypatch.setattr(B, "ts_tsm", lambda e0, beta, r: real(e0, beta, r) * (1 + 1e-5))
+    c = C.settling_ode_claim()
+    assert c.verdict == "refuted" and c.counterexample.confirmed
+    monkeypatch.undo()
+    C.settling_ode_claim.cache_clear()
+    assert C.settling_ode_claim().verdict == "checked"

@@ -17,12 +17,12 @@ from lgw.sim.lunar.closed_loop import RunOptions
 from lgw.theory.lunar import parameters as P
 from lgw.tuning.commands import make_command
 from lgw.tuning.lunar import figures as F
-from lgw.tuning.lunar import report_sections as RS
 from lgw.tuning.system import get_system
 
 T_END, T_FAIL = 20.0, 8.0  # s
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 FILES = ("lunar_tracking.png", "lunar_thrust.png", "lunar_d0e.png", "lunar_lyapunov.png")
+REPORT_FILES = (*FILES, "lunar_bandwidth.png")
 
 report_command = make_command(get_system("lunar"), "report")
 
@@ -75,31 +75,29 @@ def test_report_embeds_the_figures(tmp_path, monkeypatch):
     """``lgw report lunar`` end to end on the short runs: every figure is in report.html as a
     data URI holding exactly the PNG written beside the report."""
 
-    def runs(dt: float = P.DT):
-        res, ctx = short_run(dt=dt)
-        return ctx, res, S.summarize(res, ctx)
-
     def case(gains=None, opts=None, n=1):
         return original_case(gains, _short(opts), n)
 
+    from lgw.tuning.lunar import design as D
+
     original_case = S.section5_case
-    monkeypatch.setattr(S, "section5_runs", runs)
-    monkeypatch.setattr(RS, "section5_runs", runs)
-    monkeypatch.setattr(RS, "section5_case", case)
+    monkeypatch.setattr(S, "section5_case", case)  # every Section 5 flight of the report
+    monkeypatch.setattr(S, "_FLIGHTS", {})  # no flight cached by another test
+    monkeypatch.setattr(D, "WN_GRID", (25.0, 30.0))  # the sweep: two full runs per wn
     r = CliRunner().invoke(report_command, ["--out", str(tmp_path)])
     assert r.exit_code == 0, r.output
     html = (tmp_path / "report.html").read_text()
     uris = re.findall(r"src='data:image/png;base64,([A-Za-z0-9+/=]+)'", html)
     embedded = {base64.b64decode(u) for u in uris}
-    for name in FILES:
+    for name in REPORT_FILES:
         png = (tmp_path / name).read_bytes()
         assert png.startswith(PNG_SIGNATURE)
         assert png in embedded, name
         assert name in r.output
-    assert len(uris) == len(FILES)
+    assert len(uris) == len(REPORT_FILES)
     assert "http:" not in html and "https:" not in html
     md = (tmp_path / "report.md").read_text()
-    assert all(f"]({name})" in md for name in FILES)
+    assert all(f"]({name})" in md for name in REPORT_FILES)
 
 
 @pytest.mark.parametrize("bad", [0.0])

@@ -122,9 +122,11 @@ def test_disagreement_kinds_are_real() -> None:
     """Kinds on states of the million (benchmarks/adversarial_campaign.py, seed 0): RK4 blows
     up at t = 0 where dopri5 lands (an axis at 1e-45 m; RK4 at dt/10 still blows up: near);
     dopri5 runs dry 4e-10 s in, inside RK4's first step, which RK4 discards as blown up (RK4
-    at dt/10 runs dry too: refined); RK4
-    runs dry 0.2 kg before the landing dopri5 makes with 132.3 of 132.5 kg, and still does at
-    dt/10.  A disagreement that is none of these is "other", the property test's failure."""
+    at dt/10 runs dry too: refined).  A state below the ground is "below_surface" in both
+    (lgw.sim.results; the million's "fuel" example started 1563 m below the ground, and no
+    "fuel" disagreement is left in 200,000 adversarial states since a case ends at the
+    ground).  A disagreement that is none of the kinds is "other", the property test's
+    failure: here the same pair with the dopri5 outcome replaced by a crash."""
     r0 = np.array([[-4.9086e+02, -1.3516e-45, 7.2521e+03], [-8.9448e+02, -2.1939e-03, 1.9845e+01],
                    [-3.066e+00, -1.855e-01, -1.563e+03]])
     v0 = np.array([[0.0, 0.0, -8.8342], [2.1256e+001, 5.0782e+003, -9.2477e-195],
@@ -136,8 +138,21 @@ def test_disagreement_kinds_are_real() -> None:
                                                           strict=True)]
     assert names == [("command_blown_up", "landed"),
                      ("command_blown_up", "propellant_exhausted"),
-                     ("propellant_exhausted", "landed")], names
-    assert disagreement_kinds(r0, v0, m0, a, b).tolist() == ["near", "refined", "fuel"]
-    # with a load the fuel is nowhere near, the same pair of outcomes is "other"
-    b.fuel[2] = a.fuel[2] = 0.5 * (m0[2] - M_DRY)
-    assert disagreement_kinds(r0, v0, m0, a, b).tolist()[2] == "other"
+                     ("below_surface", "below_surface")], names
+    assert disagreement_kinds(r0, v0, m0, a, b).tolist() == ["near", "refined", ""]
+    # dopri5 "crashed" at the first one's own time: none of the kinds
+    b.landed[0] = False
+    b.contact[0] = True
+    b.contact_time[0] = 5.0
+    assert disagreement_kinds(r0, v0, m0, a, b).tolist()[0] == "near"  # near is near
+    r0n = r0.copy()
+    r0n[0, 1] = -1.0  # not near its target: the same pair is "other"
+    assert disagreement_kinds(r0n[:1], v0[:1], m0[:1], _take(a, 0), _take(b, 0)).tolist() \
+        == ["other"]
+
+
+def _take(res, i: int):
+    from lgw.sim.mars.batch import ARRAY_FIELDS, BatchResult
+    kw = {k: getattr(res, k)[i:i + 1] for k in ARRAY_FIELDS}
+    return BatchResult(eps=res.eps, dt=res.dt, r0=res.r0[i:i + 1], v0=res.v0[i:i + 1],
+                       m0=res.m0[i:i + 1], info=res.info, **kw)

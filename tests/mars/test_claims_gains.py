@@ -82,7 +82,7 @@ def test_report_json_and_claims_json(tmp_path):
     gfile = tmp_path / "part1.toml"
     gfile.write_text(part1_gains_toml())
     runner = CliRunner()
-    res = runner.invoke(cli, ["report", "mars", "--gains", str(gfile), "--json"],
+    res = runner.invoke(cli, ["report", "mars", "--gains", str(gfile), "--no-sim", "--json"],
                         catch_exceptions=False)
     assert res.exit_code == 0, res.output
     out = json.loads(res.output)
@@ -97,7 +97,27 @@ def test_report_json_and_claims_json(tmp_path):
     res2 = runner.invoke(cli, ["report", "mars", "--gains", str(gfile), "--no-sim",
                                "--out", str(tmp_path / "out")], catch_exceptions=False)
     assert res2.exit_code == 0
-    assert (tmp_path / "out" / "claims.json").read_text() == res.output
+    # claims.json is the --json document without the provenance head (lgw_version, command,
+    # gains, disturbance) every --json document starts with
+    file_doc = json.loads((tmp_path / "out" / "claims.json").read_text())
+    assert {k: out[k] for k in file_doc} == file_doc
+    assert set(out) - set(file_doc) <= {"lgw_version", "command", "gains", "disturbance",
+                                        "library_warnings"}
+    # the findings give the command that reproduces one claim: --claim reports it alone
+    cmd = {f["id"]: f["command"] for f in out["findings"]}["paper-numbers-part1@gains"] \
+        if any(f["id"] == "paper-numbers-part1@gains" for f in out["findings"]) else None
+    assert cmd is None  # these gains reproduce Part 1: not a finding
+    one = runner.invoke(cli, ["report", "mars", "--gains", str(gfile), "--no-sim", "--claim",
+                              "T2-printed", "--json"], catch_exceptions=False)
+    doc = json.loads(one.output)
+    assert [c["id"] for c in doc["claims"]] == ["T2-printed"]
+    assert doc["findings"][0]["command"] == (f"lgw report mars --gains {gfile} --no-sim "
+                                             "--claim T2-printed --json")
+    assert doc["findings"][0]["witness"] and doc["claims"][0]["witness"]["rechecked_margin"] < 0
+    bad = runner.invoke(cli, ["report", "mars", "--no-sim", "--claim", "no-such", "--json"])
+    from lgw.theory.errors import ParameterError
+    assert isinstance(bad.exception, ParameterError) and "--claim" in str(bad.exception)
+    assert "T2-printed" in str(bad.exception)  # the valid ids are named
 
 
 def test_report_needs_out_or_json():
@@ -107,3 +127,86 @@ def test_report_needs_out_or_json():
 
     res = CliRunner().invoke(cli, ["report", "mars"])
     assert isinstance(res.exception, ParameterError) and "--out" in str(res.exception)
+
+
+def other_gains_toml() -> str:
+    """A second gain set unlike the defaults in every table a gain-set claim reads: [gains]
+    (gains and exponents), [disturbance], [bounded] and [bounded-sat]."""
+    from lgw.theory.mars.bounded import DEFAULT_BOUNDED
+    from lgw.theory.mars.bounded_sat import DEFAULT_SAT
+
+    def table(name, d, scale):
+        lines = [f"[{name}]"]
+        for k, val in d.items():
+            if isinstance(val, list):
+                lines.append(f"{k} = [{', '.join(repr(scale * x) for x in val)}]")
+            else:
+                lines.append(f"{k} = {val!r}")
+        return "\n".join(lines) + "\n"
+    bounded = {**DEFAULT_BOUNDED, "e1": 0.5}
+    sat = {**DEFAULT_SAT, "e1": 0.5}
+    return ("[gains]\nbeta1 = 0.3\nbeta2 = 0.002\nalpha1 = 0.9\nalpha2 = 0.001\nq1 = 0.7\n"
+            "q2 = 1.3\ng1 = 0.8\ng2 = 1.2\n\n[disturbance]\na_max = 40.0\ntheta1 = 0.3\n"
+            "theta2 = 0.2\n\n" + table("bounded", bounded, 1.1) + "\n"
+            + table("bounded-sat", sat, 1.05))
+
+
+def test_every_gain_set_claim_follows_the_gain_file(tmp_path):
+    """Two gain sets through ``lgw report mars --json``: every claim in the gain-set scope
+    reports different numbers for them (each reads the file's tables, the bounded laws' too),
+    and names the table it judged."""
+    from lgw.theory.mars.gains import gains_from_toml_text
+
+    text = other_gains_toml()
+    gains_from_toml_text(text)  # valid
+    gfile = tmp_path / "other.toml"
+    gfile.write_text(text)
+    runner = CliRunner()
+    docs = []
+    for extra in ([], ["--gains", str(gfile)]):
+        res = runner.invoke(cli, ["report", "mars", "--no-sim", "--json", *extra],
+                            catch_exceptions=False)
+        assert res.exit_code == 0, res.output
+        docs.append({c["id"]: c for c in json.loads(res.output)["claims"]})
+    a, b = docs
+    scoped = sorted(cid for cid, c in a.items() if c["scope"] == "gain-set")
+    assert scoped == sorted(cid for cid, c in b.items() if c["scope"] == "gain-set")
+    assert {"bounded-invariants", "bounded-sat-bounds", "thrust-table1-printed@gains",
+            "bounded-command-printed@gains", "tuning-rule@gains"} <= set(scoped)
+    same = [cid for cid in scoped if a[cid]["numbers"] == b[cid]["numbers"]
+            or not b[cid]["numbers"]]
+    assert not same, f"gain-set claims whose numbers do not follow the gains: {same}"
+    assert "the gain file's [bounded] table" in b["bounded-invariants"]["numbers"]["gains"]
+    assert "DEFAULT_BOUNDED" in a["bounded-invariants"]["numbers"]["gains"]
+    assert "[bounded-sat] table" in b["bounded-sat-bounds"]["numbers"]["gains"]
+    # the general claims do not depend on the gain file
+    gen = [cid for cid, c in a.items() if c["scope"] == "all-gains"]
+    assert all(a[cid]["verdict"] == b[cid]["verdict"] for cid in gen)
+
+
+def test_every_witness_lies_inside_the_hypotheses():
+    """Every witness of every claim (steps, searches, remarks, cited hypotheses) that names an
+    exponent of (16), (25) has it in the range the statement claims: 0 < q1, g1 < 1 < q2, g2
+    (a witness outside the hypotheses refutes nothing)."""
+    from fractions import Fraction
+
+    from lgw.theory.evidence import Cited
+
+    def walk(steps):
+        for s in steps:
+            yield s
+            if isinstance(s.evidence, Cited):
+                yield from walk(s.evidence.hypotheses)
+
+    ranges = {"q1": (0, 1), "g1": (0, 1), "q2": (1, 1e9), "g2": (1, 1e9)}
+    seen = 0
+    for c in all_claims(default_gains()):
+        for s in walk(c.steps + c.searches + c.remarks):
+            w = s.evidence.witness
+            if w is None:
+                continue
+            for name, (lo, hi) in ranges.items():
+                if name in w.point:
+                    seen += 1
+                    assert lo < Fraction(str(w.point[name])) < hi, (c.id, name, w.point)
+    assert seen >= 5

@@ -5,9 +5,13 @@ with the commands named below; simulation records compare to 1e-12 relative (int
 arithmetic may be reordered by a refactor; any larger difference is a behaviour change).
 The report files (report_nocompare.md/.tex/.html/.claims.json) were re-made deliberately in
 issue 13, when every verdict became computed from evidence (new steps, evidence summaries,
-witness tables, scope sections, coverage table, gain-set claims, claims.json); they compare
-byte for byte.  Deliberate changes to these outputs re-make the golden files and say why in
-the commit that does.
+witness tables, scope sections, coverage table, gain-set claims, claims.json), and again when
+the verdicts were made to follow the mathematics: the findings page first, the paper's
+statements and the workbench's corrections as separate linked claims, counts of the paper's
+statements, lemmas by reference (FromClaim), falsification searches beside the proofs, the
+bounded laws' box claims for the gain file's tables, the claims on the paper's simulations
+(unproven without --sim).  They compare byte for byte.  Deliberate changes to these outputs
+re-make the golden files and say why in the commit that does.
 """
 
 from __future__ import annotations
@@ -32,7 +36,8 @@ def test_bounds_json_same_bytes():
 
 
 def test_report_same_bytes(tmp_path):
-    """``lgw report mars --no-compare --out DIR`` (golden: the same command at issue 13)."""
+    """``lgw report mars --no-sim --out DIR`` (golden: the same command, re-made with the
+    verdicts that follow the mathematics)."""
     _run("report", "mars", "--no-sim", "--out", str(tmp_path))
     for name in ("report.md", "report.tex", "report.html", "claims.json"):
         new = (tmp_path / name).read_text()

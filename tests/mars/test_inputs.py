@@ -140,7 +140,7 @@ def test_any_accepted_gain_set_has_finite_bounds(key, value):
     (b"\n\n  \n", "empty"),
     (HEADER.encode(), "no data rows"),
     ((HEADER + "1,2,3\n").encode(), "fields"),
-    ((HEADER + ROW.replace("1905", "0")).encode(), "> 0"),
+    ((HEADER + ROW.replace("1905", "0")).encode(), r"in \(0, 1e\+09\] kg"),
 ])
 def test_malformed_states_csv_is_a_named_error(tmp_path, content, words):
     p = tmp_path / "s.csv"
@@ -327,3 +327,48 @@ def test_scheduler_with_workers_is_an_error():
     r = run_lgw(["simulate", "mars", "--scheduler", "tcp://127.0.0.1:8786", "--workers", "2"])
     assert_one_error(r)
     assert "--workers" in r.stderr and "--scheduler" in r.stderr
+
+
+# --- impossible values: refused at input, or computed right ----------------------------------
+
+def test_states_file_mass_beyond_float_resolution_is_refused(tmp_path):
+    """m0 = 1e30 kg saturated at 50 kN for 120 s reported 0 kg of fuel (the burn is lost in
+    the rounding of the mass): m0 is refused above 1e9 kg, with the row and the range."""
+    from lgw.sim.mars.campaign import M0_MAX, read_states_csv
+
+    p = tmp_path / "s.csv"
+    p.write_text("rx,ry,rz,vx,vy,vz,m\n-2000,1000,1500,100,-15,-75,1905\n"
+                 "-2000,1000,1500,100,-15,-75,1e30\n")
+    with pytest.raises(ParameterError) as e:
+        read_states_csv(p)
+    assert e.value.name == "--initial-states row 3 column m" and f"{M0_MAX:g}" in e.value.valid
+    p.write_text(f"rx,ry,rz,vx,vy,vz,m\n-2000,1000,1500,100,-15,-75,{M0_MAX!r}\n")
+    assert read_states_csv(p)[2][0] == M0_MAX
+
+
+def test_optimal_fuel_and_mass_are_possible_whatever_the_isp():
+    """Isp = 1e300 s gave -4e-12 kg of fuel and a final mass above m0: the mass is integrated
+    from the SOCP's own sigma, so fuel in [0, m0 - m_dry] and mass in [m_dry, m0] exactly."""
+    from lgw.sim.mars.optimal import solve_fuel_optimal
+    from lgw.theory.mars.parameters import M0, M_DRY, R0, V0
+
+    for isp in (1e300, 1e8, 225.0):
+        s = solve_fuel_optimal(R0, V0, M0, 30.0, n=20, isp=isp)
+        assert s.feasible
+        assert 0.0 <= s.fuel <= M0 - M_DRY and s.m[0] == M0
+        assert np.all((s.m >= M_DRY) & (s.m <= M0)) and np.all(np.diff(s.m) <= 0)
+        assert s.fuel == pytest.approx(M0 - s.m[-1], abs=1e-9)
+
+
+def test_optimal_minimum_thrust_burning_the_propellant_is_infeasible_not_nan():
+    """A lower thrust bound that alone burns more than the propellant before tf made the
+    problem data NaN (cvxpy raised); it is an infeasible problem, and the CLI refuses it at
+    input with the largest minimum thrust for that tf."""
+    from lgw.sim.mars.optimal import max_time, solve_fuel_optimal
+    from lgw.theory.mars.parameters import M0, R0, V0
+
+    s = solve_fuel_optimal(R0, V0, M0, 600.0, thrust_min=60_000.0, n=20)
+    assert s.status == "infeasible" and "propellant" in s.settings["infeasible_reason"]
+    longest = max_time(R0, V0, M0, 30.0, 9999.0, n=20)
+    assert solve_fuel_optimal(R0, V0, M0, longest, n=20).feasible
+    assert not solve_fuel_optimal(R0, V0, M0, longest + 0.05, n=20).feasible

@@ -22,11 +22,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from hypothesis import assume, event, example, given, settings, target
+from hypothesis import strategies as st
+from lgw.sim.results import OUTCOMES
 from lgw.theory.falsify import Budget, falsify
 from lgw.theory.mars import searches as S
 from lgw.theory.mars.bounds import axis_bounds, reaching_time
 from lgw.theory.mars.claims import t2_claim
 from lgw.theory.mars.gains import gains_from_dict
+from lgw.theory.mars.parameters import G_MARS, M0, M_DRY
 from lgw.theory.mars.reduced import surface_trajectory
 from lgw.tuning.mars.verify import judge_states
 from lgw.tuning.verifying import margins
@@ -246,3 +249,58 @@ def test_reduced_landing_within_landing_time_bound(gd, s1_0, s2_0):
     t, b = _landing_case(p)
     target(t / b, label="landing / bound")
     assert t <= b * (1 + 1e-9), (p, t, b)
+
+
+# --- states that cannot stop before the ground ---------------------------------------------
+
+F_AXIS = 50e3  # N, per-axis thrust limit of these cases (seed 000 Part 3)
+
+
+@st.composite
+def doomed_states(draw):
+    """1-4 states (r0, v0) descending too fast to stop above the ground with |F_z| <= F_AXIS
+    and no drag: v_z0^2 >= 1.1 * 2 a_up z0, a_up = F_AXIS / m_dry + g_z the largest upward
+    acceleration at any mass the case can have (m >= m_dry)."""
+    n = draw(st.integers(1, 4))
+    a_up = F_AXIS / M_DRY + G_MARS[2]
+    r0 = np.zeros((n, 3))
+    v0 = np.zeros((n, 3))
+    for i in range(n):
+        z0 = draw(st.floats(1.0, 500.0))
+        k = draw(st.floats(1.1, 20.0))
+        r0[i] = [draw(st.floats(-2000.0, 2000.0)), draw(st.floats(-2000.0, 2000.0)), z0]
+        v0[i] = [draw(st.floats(-50.0, 50.0)), draw(st.floats(-50.0, 50.0)),
+                 -np.sqrt(k * 2 * a_up * z0)]
+    return r0, v0
+
+
+@given(g=gain_sets(disturbance=True), states=doomed_states())
+@settings(max_examples=scaled(15))
+def test_states_that_cannot_stop_crash_at_first_contact(g, states):
+    """Whatever the gains, a state that cannot stop above the ground ends at its first contact
+    (lgw.sim.results), as a crash, never below the ground: contact time and impact speed
+    within the kinematic bounds of the thrust limit (|F_z| <= F_AXIS, m_dry <= m <= m0), and
+    the case's end at the located crossing."""
+    from lgw.sim.mars.batch import simulate_batch
+
+    r0, v0 = states
+    m0 = np.full(len(r0), M0)
+    a_up = F_AXIS / M_DRY + G_MARS[2]
+    a_dn = F_AXIS / M_DRY - G_MARS[2]
+    z0, w = r0[:, 2], -v0[:, 2]
+    t_hi = 2 * z0 / w  # decelerating all the way: the mean speed is at least w / 2
+    t_lo = (-w + np.sqrt(w * w + 2 * a_dn * z0)) / a_dn
+    vz_lo, vz_hi = np.sqrt(w * w - 2 * a_up * z0), np.sqrt(w * w + 2 * a_dn * z0)
+    for method in ("rk4", "dopri5"):
+        res = simulate_batch(r0, v0, m0, g, thrust_limit=F_AXIS, drag="none", method=method)
+        code, t = res.outcomes()
+        assert all(OUTCOMES[c] == "crashed" for c in code), ([OUTCOMES[c] for c in code], r0, v0)
+        tc = res.contact_time
+        assert np.array_equal(t, tc)
+        assert np.all((tc >= t_lo * (1 - 1e-6)) & (tc <= t_hi * (1 + 1e-6))), (tc, t_lo, t_hi)
+        vz = -res.impact_velocity[:, 2]
+        assert np.all((vz >= vz_lo * (1 - 1e-6)) & (vz <= vz_hi * (1 + 1e-6))), (vz, vz_lo)
+        # at the crossing, never after it: on the ground plane, never below
+        assert np.all(np.abs(res.contact_point[:, 2]) < 1e-6)
+        assert np.all(res.min_altitude > -1e-6) and np.all(res.y_end[:, 2] > -1e-6)
+        assert np.all(res.fuel <= M0 - M_DRY) and not res.fuel_exhausted.any()

@@ -128,23 +128,27 @@ def test_ground_contact_is_not_an_integration_artifact() -> None:
     b = simulate_batch(r0[k], v0[k], m0[k], G, **DOPRI)
     rk = simulate_batch(r0[k], v0[k], m0[k], G)
     assert not ref.ground_contact[0] and not b.ground_contact[0]
+    # RK4's dip is a graze (slower than the landing speed tolerance, shallower than the
+    # position tolerance), not a contact: all three land
+    assert rk.landed[0] and b.landed[0] and ref.landed[0] and not rk.contact[0]
     assert abs(b.min_altitude[0] - ref.min_altitude[0]) < 1e-5
     assert rk.min_altitude[0] < 0 and rk.min_altitude[0] > -1e-3
 
 
 def test_min_altitude_between_nodes() -> None:
-    """A dive below ground and back (r0 = 10 m, v0 = -15 m/s straight down, 50 kN): the lowest
-    point lies between RK4 nodes.  min_altitude must be the minimum of the steps' Hermite
-    interpolants rebuilt here from the recorded nodes (r_z and its derivative v_z), and lower
-    than the lowest node."""
-    r0, v0, m0 = np.array([[0.0, 0.0, 10.0]]), np.array([[0.0, 0.0, -15.0]]), [1900.0]
+    """A graze below the ground and back between RK4 nodes (r0 = (5, 0, 0.05) m, v0 = 0.5 m/s
+    straight down, dt = 0.1 s: the z axis converges first and dips a fraction of a mm below
+    r_z = 0, crossing it slower than the landing speed tolerance, so no contact; the case
+    lands).  min_altitude must be the minimum of the steps' Hermite interpolants rebuilt here
+    from the recorded nodes (r_z and its derivative v_z), and lower than the lowest node."""
+    r0, v0, m0 = np.array([[5.0, 0.0, 0.05]]), np.array([[0.0, 0.0, -0.5]]), [1900.0]
     dt = 0.1
-    b = simulate_batch(r0, v0, m0, G, dt=dt, record=True, thrust_limit=50e3)
+    b = simulate_batch(r0, v0, m0, G, dt=dt, record=True)
     tr = b.trajectory
     z, vz = tr["r"][0, :, 2], tr["v"][0, :, 2]
     k = int(np.searchsorted(tr["t"], b.landing_time[0]))  # nodes up to the landing step
     lowest = min(_herm_min(z[i], vz[i], z[i + 1], vz[i + 1], dt, 1.0) for i in range(k - 1))
-    assert b.ground_contact[0]
+    assert b.landed[0] and b.ground_contact[0] and not b.contact[0]
     assert b.min_altitude[0] == pytest.approx(lowest, abs=1e-12)
     assert z[:k].min() - b.min_altitude[0] > 1e-4
 

@@ -4,7 +4,7 @@ reference mode for the same state; issue 14's reproductions, one test per defect
 from __future__ import annotations
 
 import numpy as np
-from lgw.sim.mars.batch import BLOWUP_ACCEL, simulate_batch
+from lgw.sim.mars.batch import BLOWUP_ACCEL, OUTCOMES_USED, simulate_batch
 from lgw.sim.mars.disturbances import make_disturbance
 from lgw.sim.mars.reference import ClosedLoopRHS, simulate_reference
 from lgw.sim.results import OUTCOMES, classify, counts
@@ -137,8 +137,18 @@ def test_times_and_precedence() -> None:
                        nonfinite=[True, True], step_limit=[False, True],
                        landing_time=[3.0, np.nan], t_end=[9.0, 9.0], stop_at_outcome=False)
     assert code.tolist() == [0, 1] and t[0] == 3.0 and np.isnan(t[1])
-    assert counts(code) == {"landed": 1, "propellant_exhausted": 1, "nonfinite": 0,
-                            "step_limit": 0, "horizon": 0, "command_blown_up": 0}
+    assert counts(code, OUTCOMES_USED) == {
+        "landed": 1, "crashed": 0, "below_surface": 0, "propellant_exhausted": 1,
+        "command_blown_up": 0, "nonfinite": 0, "step_limit": 0, "horizon": 0}
+    # a contact that is not a landing crashed at its contact time; below the surface at t = 0
+    # comes first
+    code, t = classify(landed=[False, True, False], fuel_exhausted=[True, False, False],
+                       nonfinite=[False] * 3, step_limit=[False] * 3,
+                       contact=[True, True, False], contact_time=[2.5, 1.0, np.nan],
+                       below_surface=[False, False, True], landing_time=[np.nan, 1.0, np.nan],
+                       t_end=[2.6, 1.0, 5.0], stop_at_outcome=False)
+    assert [OUTCOMES[k] for k in code] == ["crashed", "landed", "below_surface"]
+    assert t.tolist() == [2.5, 1.0, 0.0]
     # blown up before non-finite, step limit and horizon; after landing and running dry
     code, t = classify(landed=[False, False, True], fuel_exhausted=[False, True, False],
                        nonfinite=[True, False, False], step_limit=[True, False, False],

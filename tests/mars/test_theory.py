@@ -66,7 +66,7 @@ def test_claims_invariants():
     assert by["T2-printed"] == "refuted" and by["T2-corrected"] == "proved-given"
     assert by["T1"] == "proved-given" and by["exact-bound"] == "proved-given"
     # the paper's max{T1, T2}: refuted by the full-domain search (the sound T1 + T2 is proved)
-    assert by["landing-time"] == "refuted" and by["T3"] == "unproven"
+    assert by["landing-time"] == "refuted" and by["T3"] == "refuted"
     assert by["theorem1"] == "refuted" and by["theta-effect"] == "refuted"
     for eq in ("(18)", "(26)", "(31)", "(40)", "(45)", "(32)", "(3)", "(6)", "Remark 1"):
         assert any(eq in c.equations for c in claims), eq

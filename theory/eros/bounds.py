@@ -12,6 +12,7 @@ The printed (5) and (7) are these with p and q exchanged (negative for p < q).
 from __future__ import annotations
 
 import numpy as np
+import sympy as sp
 from scipy.optimize import brentq
 
 
@@ -20,9 +21,15 @@ def ts_tsm(e0, beta: float, r: float):
     return np.abs(e0) ** (1.0 - r) / (beta * (1.0 - r))
 
 
+def _log1p(x):
+    """log(1 + x) of an array or float (numpy), or of a SymPy expression."""
+    return sp.log(1 + x) if isinstance(x, sp.Basic) else np.log1p(x)
+
+
 def ts_tsm_printed(e0, beta: float, p: float, q: float):
-    """The settling time printed after seed 002 eq. (5): p/(beta (p-q)) |e0|^((p-q)/p)."""
-    return p / (beta * (p - q)) * np.abs(e0) ** ((p - q) / p)
+    """The settling time printed after seed 002 eq. (5): p/(beta (p-q)) |e0|^((p-q)/p).
+    (Also on SymPy symbols: the claims judge this function's formula.)"""
+    return p / (beta * (p - q)) * abs(e0) ** ((p - q) / p)
 
 
 def ts_ftsm(e0, alpha: float, beta: float, r: float):
@@ -34,7 +41,7 @@ def ts_ftsm_printed(e0, alpha: float, beta: float, p: float, q: float):
     """Seed 002 eq. (7) as printed: p/(alpha(p-q)) (ln(alpha e0^((p-q)/p) + beta) - ln beta),
     evaluated as p/(alpha(p-q)) log1p(alpha e0^((p-q)/p)/beta) (the same number, without the
     cancellation of the two logarithms)."""
-    return p / (alpha * (p - q)) * np.log1p(alpha * np.abs(e0) ** ((p - q) / p) / beta)
+    return p / (alpha * (p - q)) * _log1p(alpha * abs(e0) ** ((p - q) / p) / beta)
 
 
 def t_pd(e0, lam: float, tol: float):

@@ -69,13 +69,15 @@ def surface(law: str) -> sp.Expr:
 
 
 def ds_de(law: str, floor: bool = False) -> sp.Expr:
-    """ds/de for e != 0: (11)'s alpha + beta (p/q) |e|^{p/q - 1} (or lambda for PD).
+    """ds/de for e != 0, differentiated from ``surface(law)``: (11)'s alpha + beta (p/q)
+    |e|^{p/q - 1} for (6) (lambda for PD).  The surfaces are odd in e, so ds/de is even: it is
+    the derivative on the branch e = E > 0, written in |e|.
 
     ``floor``: the implemented form, |e| replaced by max(|e|, e_floor)."""
-    if law == "pdsmc":
-        return lam
+    E = sp.Symbol("E", positive=True)
+    d = sp.powsimp(sp.expand(sp.diff(surface(law).subs(e, E), E)), force=True)
     a = sp.Max(sp.Abs(e), eps) if floor else sp.Abs(e)
-    return alpha + beta * r * a ** (r - 1)
+    return d.subs(E, a)
 
 
 def sdot(law: str, control: sp.Expr) -> sp.Expr:

@@ -100,3 +100,85 @@ TWO_POINT_FIT_MAX = 0.0526
 # Where the paper's path sits (same script): the landing point RF is outside the shape model,
 # 614 m above its surface along the ray from the centroid; the start R0 is 4126 m above it.
 LANDING_ALTITUDE = 614.1  # m
+
+# --- The whole descent: from Table 1's start to touchdown on the shape model (chosen) ----------
+# lgw.theory.eros.descent builds the profile; lgw.sim.eros.descent flies it.  Seed 002 flies
+# 15 s of its 8000 s reference and ends it at Table 1's landing position, which is 513 m from
+# the nearest point of the shape model (614 m along the ray from the centroid): a hover.
+#
+# Touchdown site: the point of the shape model nearest to Table 1's landing position RF
+# (computed, lgw.theory.eros.descent.touchdown_site).  The terminal segment flies the straight
+# line from RF to it, the shortest way down: that line lies in the surface's normal cone at the
+# site, so the touchdown velocity is along the local surface normal (no lateral slip).
+# Terminal segment: seed 002's own form, a cubic (8) with boundary conditions of the form (9):
+# at rest at RF at T_LAND, at the site at T_LAND + T_TERMINAL with the speed V_TOUCHDOWN along
+# the approach line; after that the reference continues down the same line at V_TOUCHDOWN
+# (so a probe that is still above the surface keeps descending until it touches).
+V_TOUCHDOWN = 0.10  # m/s, reference touchdown speed.  Hayabusa's final vertical descent to
+#   Itokawa started at 12 cm/s (JAXA/ISAS, "Hayabusa landed on and took off from Itokawa
+#   successfully", 24 Nov 2005): the touch-and-go class of speed.
+T_TERMINAL = 2000.0  # s, duration of the terminal segment (chosen: its peak speed 0.36 m/s
+#   stays below the 1.57 m/s the paper's own cubic asks for, its acceleration (<= 6.7e-4 m/s^2,
+#   ~12 % of the local gravity) is well inside the thrust limit).
+T_AFTER = 600.0  # s, horizon after the reference's touchdown time (60 m more descent at 0.1 m/s:
+#   a probe that has not touched by then is reported as such, "horizon").
+LAND_SPEED_MAX = 0.5  # m/s, landed iff the speed relative to the surface at contact is at most
+#   this (chosen: 5x the reference's 0.1 m/s, a third of the 1.5-1.8 m/s at which NEAR
+#   Shoemaker, never designed to land, touched down on Eros and survived: NASA release 01-20,
+#   14 Feb 2001; Dunham et al., Icarus 159 (2002) 433).  Faster: crashed, with the speed.
+
+# Probe.  Mass: seed 002 Table 1 (150 kg, "probe weight"), taken as the wet mass at the start.
+# Thrusters: one 22 N hydrazine thruster per direction and axis, the class of the 22.2 N
+# (5 lbf) hydrazine trajectory-correction thrusters of NASA's Genesis probe
+# (solarsystem.nasa.gov/genesismission/gm2/spacecraft/propulsion.html); saturated per axis by
+# default (a thruster pair per body axis, the probe holding its attitude fixed in the asteroid
+# frame), or on the norm (one steerable thruster).
+THRUST_MAX = 22.0  # N, per axis (or on the norm); u_max = THRUST_MAX / mass = 0.147 m/s^2
+ISP = 225.0  # s, catalytic hydrazine monopropellant, steady state (Sutton & Biblarz, Rocket
+#   Propulsion Elements: about 220-235 s for hydrazine thrusters of this class)
+G0 = 9.80665  # m/s^2, standard gravity (Isp in s)
+PROPELLANT = 15.0  # kg, chosen: Hayabusa's fraction of chemical propellant (50 kg of its 530 kg
+#   launch mass, astronautix.com "Hayabusa") on 150 kg; the descent needs a few kg.  The dry
+#   mass is PROBE_MASS - PROPELLANT.
+
+# Solar radiation pressure: the unknown disturbance (the controller has no model of it).
+# P = 4.56e-6 N/m^2 at 1 AU (1361 W/m^2 / c), at Eros's semi-major axis 1.458 AU; Hayabusa's
+# area-to-mass ratio (12 m^2 of solar array on 530 kg, astronautix.com "Hayabusa") and a
+# reflectivity coefficient 1.5 (chosen, between absorbing 1 and mirror 2).
+SRP_ACCEL = 4.56e-6 / 1.458**2 * 1.5 * 12.0 / 530.0  # m/s^2 (7.3e-8)
+SRP_CR_RANGE = (1.0, 2.0)  # reflectivity coefficient range of a campaign (SRP_ACCEL at 1.5)
+SUN_DIR0 = np.array([1.0, 0.0, 0.0])  # unit, body frame at t = 0 (chosen: in the equator);
+#   fixed in inertial space, so it turns at -OMEGA about z in the body frame
+
+# Navigation error (option; default off): the controller sees r + dr, v + dv, each a first-
+# order Gauss-Markov process per axis with standard deviations NAV_SIGMA_R, NAV_SIGMA_V and
+# correlation time NAV_TAU (chosen: metre-level position and mm/s-level velocity knowledge, the
+# class of landmark-based optical navigation near a small body (seed 002 ref. [16], Li & Cui
+# 2008); a filter's error is correlated over its time constant, not white).
+NAV_SIGMA_R = 1.0  # m
+NAV_SIGMA_V = 0.005  # m/s
+NAV_TAU = 100.0  # s
+
+# Guidance for the descent (chosen; seed 002 prints no gains and its defaults (k = 2 m/s^2,
+# alpha = 1/s) ask for 14x the thrust of a 22 N thruster and are unstable when sampled at 1 s).
+# Sampling: a 1 Hz guidance cycle (the descent's time scales are >= 20 s).  k = 0.01 m/s^2
+# dominates the controller's unknowns (the two-point model's error, <= 1.4e-4 m/s^2 on the
+# descent, plus SRP) and the drift (5.5e-3 m/s^2 of gravity) as the fuzzy blend's reaching
+# condition k >= |F| max(1, N/M) requires; k dt / phi = 0.5 < 2 keeps tanh's boundary layer
+# stable under the hold (claim sampled-tanh); alpha = lam = 0.05 /s (a 20 s time constant).
+DESCENT_DT = 1.0  # s
+DESCENT_GAINS = {"alpha": 0.05, "beta": 0.02, "p": 3, "q": 5, "k": 0.01, "lam": 0.05,
+                 "N": 5.0, "M": 5.0, "phi": 0.02, "e_floor": 1e-3}
+DESCENT_LAW = ("fuzzy", "tanh")  # seed 002's recommended controller (conclusions)
+# Monte Carlo envelope of the descent's start (chosen): navigation-class dispersions about
+# Table 1's initial state, |e_i(0)| <= 10 m and |e_i'(0)| <= 1 cm/s.
+DESCENT_MC_POS = 10.0  # m
+DESCENT_MC_VEL = 0.01  # m/s
+# Plant gravity for the descent: the polyhedron, re-evaluated (with its gradient tensor) at a
+# sample instant whenever the probe is more than LIN_STEP (near the body: 10 % of its distance
+# to the surface) from the last evaluation point, and expanded to first order in between
+# (lgw.sim.eros.descent_kernel, gravity code 3).  Chosen by measurement against the polyhedron
+# at every evaluation (benchmarks/bench_eros.py --descent; docs/eros.md): on the whole descent
+# 10 m moves the touchdown speed by 2e-8 relative, the fuel by 5e-7 relative and the contact
+# point by 5e-7 m, at 1/78 of the cost (3 m: 1/31, 30 m: 1/164, the same touchdown).
+LIN_STEP = 10.0  # m

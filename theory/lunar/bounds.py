@@ -10,10 +10,28 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+import sympy as sp
 from lgw.theory.errors import MissingDependency
 from lgw.theory.lunar.gains import A_H, LoopGains
+
+
+def _sqrt(x: Any) -> Any:
+    """sqrt of a float, or of a SymPy expression (the claims evaluate the same bound functions
+    on symbols, so that the printed and derived forms they judge are these functions)."""
+    return sp.sqrt(x) if isinstance(x, sp.Basic) else math.sqrt(x)
+
+
+def _sumsq(v: Any) -> Any:
+    """|v|^2 of a vector (float), or of a SymPy scalar / list of SymPy scalars."""
+    if isinstance(v, sp.Basic):
+        return v ** 2
+    a = np.atleast_1d(np.asarray(v))
+    if a.dtype == object:
+        return sum(x ** 2 for x in a)
+    return float(np.dot(a, a))
 
 
 def f1bar_orbit(g: LoopGains) -> float:
@@ -38,8 +56,9 @@ def f1bar_attitude(g: LoopGains, eq0_min: float) -> float:
 
 def lambda_gain_bounds(f1bar: float, f2bar: float) -> tuple[float, float]:
     """(18a), (18b): ||lambda1|| <= ||B0 du|| / sqrt(2 f1bar),
-    ||lambda2|| <= ||B0 du|| / sqrt(2 f2bar - 1) (L2 norms, lambda(0) = 0)."""
-    return 1.0 / math.sqrt(2.0 * f1bar), 1.0 / math.sqrt(2.0 * f2bar - 1.0)
+    ||lambda2|| <= ||B0 du|| / sqrt(2 f2bar - 1) (L2 norms, lambda(0) = 0).  As printed, and
+    what integrating (17b) gives (claim L2-18)."""
+    return 1 / _sqrt(2 * f1bar), 1 / _sqrt(2 * f2bar - 1)
 
 
 def v2_initial(z1_0: np.ndarray, z2_0: np.ndarray, d0e0: float = 0.0, D: float = 0.0,
@@ -48,8 +67,8 @@ def v2_initial(z1_0: np.ndarray, z2_0: np.ndarray, d0e0: float = 0.0, D: float =
 
     The printed (20) omits the last term (``printed=True`` reproduces it); (12) at t = 0 has
     it, and it is what integrating (13) needs.  D is the bound on ||d|| that d0e estimates."""
-    v = 0.5 * float(np.dot(z1_0, z1_0)) + 0.5 * float(np.dot(z2_0, z2_0))
-    return v if printed else v + (d0e0 - D) ** 2 / (2.0 * q)
+    v = _sumsq(z1_0) / 2 + _sumsq(z2_0) / 2
+    return v if printed else v + (d0e0 - D) ** 2 / (2 * q)
 
 
 def z_l2_bounds(v20: float, f1bar: float, f2bar: float, f3: float,
@@ -59,6 +78,15 @@ def z_l2_bounds(v20: float, f1bar: float, f2bar: float, f3: float,
     Integrating (13) gives f2bar - f3 in (19b); the printed (19b) has f2bar, which (13) does
     not imply (``printed=True`` reproduces it)."""
     return v20 / f1bar, v20 / (f2bar if printed else f2bar - f3)
+
+
+def z_l2_bounds_printed(z1_0: np.ndarray, z2_0: np.ndarray, f1bar: float,
+                        f2bar: float) -> tuple[float, float]:
+    """(19)-(20) exactly as printed: (V2(0)/f1bar, V2(0)/f2bar) with the printed (20)
+    V2(0) = |z1(0)|^2/2 + |z2(0)|^2/2 (no (d0e(0) - D)^2/(2q) term, and f2bar where (13) gives
+    f2bar - f3bar).  The bound claim L2-19-20 refutes (a scalar instance exceeds it); it is
+    the one a "(19b) as printed" row must use."""
+    return z_l2_bounds(v2_initial(z1_0, z2_0, printed=True), f1bar, f2bar, 0.0, printed=True)
 
 
 def transient_bounds(v20: float, w_l2: float, f1bar: float, f2bar: float, f3: float,
@@ -71,9 +99,10 @@ def transient_bounds(v20: float, w_l2: float, f1bar: float, f2bar: float, f3: fl
     constant of (18b)), A1 read as -K1 (from z2(0) in (20) and p of (10)), ||K1 f1^T|| the
     supremum over the run of its spectral norm and ||x1|| the bound (21a).  ``printed=True``
     uses the printed 1/sqrt(f2bar) in the first term."""
-    x1b = (math.sqrt(2.0 * v20) + w_l2) / math.sqrt(2.0 * f1bar)
-    first = math.sqrt(v20 / (f2bar if printed else f2bar - f3))
-    x2b = first + w_l2 / math.sqrt(2.0 * (f2bar - 0.5)) + k1f1_norm * x1b
+    x1b = (_sqrt(2 * v20) + w_l2) / _sqrt(2 * f1bar)
+    first = _sqrt(v20 / (f2bar if printed else f2bar - f3))
+    x2b = first + w_l2 / _sqrt(2 * (f2bar - sp.Rational(1, 2) if isinstance(f2bar, sp.Basic)
+                                    else f2bar - 0.5)) + k1f1_norm * x1b
     return x1b, x2b
 
 

@@ -13,11 +13,17 @@ The valid ranges are the hypotheses the derivation of (13) and (17) needs (seed 
     singular whatever K1 (claim attitude-F1).
 A matrix gain is a list of 3 numbers (the diagonal) or a 3x3 nested list.  Parsing never
 evaluates user text: values must already be TOML numbers.
+
+Optional tables a tuned file carries (``lgw tune lunar``), kept in ``Gains.extra``:
+  [command_filter] wn     natural frequency of the desired-attitude command filter, rad/s, > 0
+  [vehicle] thrust_max    the orbit-thrust limit T_max of (24) the design was sized for, N, > 0
+  [certificate]           what the tuner promises and how it knows (validated by name in
+                          ``lgw.tuning.lunar.design``); kept untouched here.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +34,9 @@ from lgw.theory.lunar.parameters import ATTITUDE_GAINS, ORBIT_GAINS
 
 LOOPS = ("orbit", "attitude")
 KEYS = ("K1", "F2", "f3", "d0e0", "q")
+# optional tables: name -> {key: (lo, hi) open below, closed above}
+DESIGN_TABLES = {"command_filter": {"wn": (0.0, 1e3)}, "vehicle": {"thrust_max": (0.0, 1e9)}}
+EXTRA_TABLES = (*DESIGN_TABLES, "certificate")
 A_H = np.array([[0.0, 0.0, -1.0]])  # f1 of the orbit loop, seed 001 (22a)
 
 
@@ -55,9 +64,12 @@ class LoopGains:
 class Gains:
     orbit: LoopGains
     attitude: LoopGains
+    extra: dict = field(default_factory=dict, compare=False)  # optional tables (docstring)
 
     def to_dict(self) -> dict[str, Any]:
-        return {"orbit": self.orbit.to_dict(), "attitude": self.attitude.to_dict()}
+        d = {"orbit": self.orbit.to_dict(), "attitude": self.attitude.to_dict()}
+        d.update({k: dict(v) for k, v in self.extra.items() if k in DESIGN_TABLES})
+        return d
 
 
 def _num(name: str, x: Any) -> float:
@@ -123,13 +135,19 @@ def paper_gains() -> Gains:
                  make_loop("attitude", dict(ATTITUDE_GAINS)))
 
 
+def default_gains() -> Gains:
+    """The built-in gain set: seed 001 Section 5's (``paper_gains``)."""
+    return paper_gains()
+
+
 def from_dict(d: dict[str, Any]) -> Gains:
     """Gains from a mapping {"orbit": {...}, "attitude": {...}}; a missing loop takes the
     paper's values, a given loop must be complete."""
-    unknown = set(d) - set(LOOPS)
+    unknown = set(d) - set(LOOPS) - set(EXTRA_TABLES)
     if unknown:
         k = sorted(unknown)[0]
-        raise ParameterError(k, d[k], "unknown table; valid tables: [orbit], [attitude]")
+        raise ParameterError(k, d[k], "unknown table; valid tables: [orbit], [attitude] and "
+                             "the optional " + ", ".join(f"[{t}]" for t in EXTRA_TABLES))
     defaults = {"orbit": ORBIT_GAINS, "attitude": ATTITUDE_GAINS}
     loops = {}
     for loop in LOOPS:
@@ -137,7 +155,33 @@ def from_dict(d: dict[str, Any]) -> Gains:
         if not isinstance(t, dict):
             raise ParameterError(loop, t, "must be a TOML table")
         loops[loop] = make_loop(loop, dict(t))
-    return Gains(**loops)
+    extra = {}
+    for name, keys in DESIGN_TABLES.items():
+        if name in d:
+            extra[name] = _design_table(name, d[name], keys)
+    if "certificate" in d:
+        if not isinstance(d["certificate"], dict):
+            raise ParameterError("certificate", d["certificate"], "must be a TOML table")
+        extra["certificate"] = d["certificate"]
+    return Gains(**loops, extra=extra)
+
+
+def _design_table(name: str, t: Any, keys: dict[str, tuple[float, float]]) -> dict[str, float]:
+    if not isinstance(t, dict):
+        raise ParameterError(name, t, "must be a TOML table")
+    for k in t:
+        if k not in keys:
+            raise ParameterError(f"{name}.{k}", t[k], f"unknown key; valid keys: "
+                                 f"{', '.join(keys)}")
+    out = {}
+    for k, (lo, hi) in keys.items():
+        if k not in t:
+            raise ParameterError(f"{name}.{k}", None, "missing")
+        v = _num(f"{name}.{k}", t[k])
+        if not lo < v <= hi:
+            raise ParameterError(f"{name}.{k}", v, f"must lie in ({lo:g}, {hi:g}]")
+        out[k] = v
+    return out
 
 
 def load(path: Path) -> Gains:

@@ -165,6 +165,11 @@ class GeneralSystem:
         return sum(sp.diff(self.V2, s) * r for s, r in self.rates.items())
 
     @cached_property
+    def V2dot_z(self) -> sp.Expr:
+        """V2' in (x1, z2, lambda, ...) coordinates (``in_z``), computed once per instance."""
+        return self.in_z(self.V2dot)
+
+    @cached_property
     def z2s(self) -> sp.Matrix:
         return vec("z2", self.n2, real=True)
 

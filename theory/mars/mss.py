@@ -21,6 +21,7 @@ Both are SymPy expressions; ``law_numeric`` lambdifies the same expressions for 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
@@ -37,6 +38,24 @@ r, v, grav, am, ap = sp.symbols("r v grav a_m a_p", real=True)
 beta1, beta2, alpha1, alpha2 = sp.symbols("beta1 beta2 alpha1 alpha2", positive=True)
 q1, q2, g1, g2 = sp.symbols("q1 q2 g1 g2", positive=True)
 GAIN_SYMBOLS = (beta1, beta2, alpha1, alpha2, q1, q2, g1, g2)
+S2 = sp.Symbol("s_2", real=True)  # the second surface as a coordinate
+
+# The hypotheses of (16) and (25) (seed 000: beta_i, alpha_i > 0, 0 < q1 < 1 < q2,
+# 0 < g1 < 1 < g2), as the open ranges a witness sampler may draw from.  q2, g2 > 1 have no
+# upper end in the paper; the sampler stops at 4 (a stated sub-range, as the full-domain
+# searches of lgw.theory.mars.searches do).
+SAMPLE_RANGES: dict[sp.Symbol, tuple[float, float]] = {
+    beta1: (0.0, 3.0), beta2: (0.0, 3.0), alpha1: (0.0, 3.0), alpha2: (0.0, 3.0),
+    q1: (0.0, 1.0), q2: (1.0, 4.0), g1: (0.0, 1.0), g2: (1.0, 4.0)}
+
+
+def hypotheses() -> list[sp.Basic]:
+    """The gain hypotheses of (16), (25) as SymPy relations (for z3)."""
+    rel = {"gt": sp.StrictGreaterThan, "lt": sp.StrictLessThan}
+    pairs = [(q1, "gt", 0), (q1, "lt", 1), (q2, "gt", 1), (g1, "gt", 0), (g1, "lt", 1),
+             (g2, "gt", 1), *((x, "gt", 0) for x in (beta1, beta2, alpha1, alpha2))]
+    # unevaluated: the symbols are declared positive, so SymPy would reduce q1 > 0 to True
+    return [rel[op](x, c, evaluate=False) for x, op, c in pairs]
 
 
 def surface1() -> sp.Expr:
@@ -125,6 +144,54 @@ def closed_loop(name: str) -> ClosedLoop:
     s2dot = time_derivative(s2, a, ap)
     V2 = s2**2 / 2
     return ClosedLoop(name, a, s1, s2, s2dot, s1**2 / 2, V2, time_derivative(V2, a, ap))
+
+
+def in_surface_coords(expr: sp.Expr) -> sp.Expr:
+    """expr(r, v) in (s1, s2) = (r, S2): v = S2 - beta1 sig(r,q1) - beta2 sig(r,q2)."""
+    return expr.subs(v, S2 + reaching_law_rhs(r))
+
+
+@cache
+def s2_drift_branches(name: str) -> tuple[sp.Expr, sp.Expr]:
+    """What the law leaves in s2' beyond the s2 reaching term, without disturbance:
+    e(s1, s2) = s2' + alpha1 sig(s2,g1) + alpha2 sig(s2,g2) in surface coordinates, computed
+    from the law's closed loop and reduced on s1 = x > 0 and s1 = -x < 0 (x positive).
+
+    The corrected law gives (0, 0) (exact cancellation, claim V2dot-corrected); the printed
+    law (25) gives +-(beta1 q1 x^(q1-1) + beta2 q2 x^(q2-1)) s2 (claim s2dot-24)."""
+    cl = closed_loop(name)
+    e = in_surface_coords(cl.s2dot.subs(ap, 0) - s2_symbol_law(surface2()))
+    x = sp.Symbol("x", positive=True)
+    out = []
+    for sg in (1, -1):
+        b = sp.powsimp(sp.expand(e.subs(r, sg * x)), force=True)
+        out.append(sp.simplify(b))
+    return out[0], out[1]
+
+
+def s2_drift_vanishes(name: str) -> bool:
+    """The law cancels s2' exactly (its drift is 0 on both branches)."""
+    return all(b == 0 for b in s2_drift_branches(name))
+
+
+@cache
+def s2_drift_numeric(name: str) -> Callable[..., float] | None:
+    """The drift e(s1, s2) of ``s2_drift_branches`` as a scalar function
+    f(s1, s2, beta1, beta2, alpha1, alpha2, q1, q2, g1, g2) (plain floats), or None when it
+    vanishes identically.  At s1 = 0 the surface derivative (22) is not defined (the paper
+    takes it for s1 != 0); there the drift is taken as 0 (a set of measure zero).  Raises
+    ValueError if the drift does not vanish with s2 (then s2 = 0 would not be invariant and
+    the reduced loops of lgw.theory.mars.reduced do not apply)."""
+    pos, neg = s2_drift_branches(name)
+    if pos == 0 and neg == 0:
+        return None
+    if sp.simplify(pos.subs(S2, 0)) != 0 or sp.simplify(neg.subs(S2, 0)) != 0:
+        raise ValueError(f"law {name}: the s2 drift does not vanish on s2 = 0")
+    x = sp.Symbol("x", positive=True)
+    s1 = sp.Symbol("s1", real=True)
+    pw = sp.Piecewise((pos.subs(x, s1), s1 > 0), (neg.subs(x, -s1), s1 < 0), (0, True))
+    return sp.lambdify((s1, S2, *GAIN_SYMBOLS), pw,
+                       modules=[{"sig": lambda a, q: math.copysign(abs(a) ** q, a)}, "math"])
 
 
 # --- Numeric law, generated from the same expressions ------------------------------------

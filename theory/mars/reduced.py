@@ -8,7 +8,7 @@ stand-alone check inside ``theory`` (which must not import ``sim``), not the cam
 from __future__ import annotations
 
 import numpy as np
-from lgw.theory.mars.mss import law_numeric, surfaces_numeric
+from lgw.theory.mars.mss import law_numeric, s2_drift_numeric, surfaces_numeric
 from lgw.theory.symbolic import np_sig
 from scipy.integrate import solve_ivp
 
@@ -41,8 +41,9 @@ def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: flo
     """The per-axis closed loop without disturbance, in surface coordinates (s1, s2):
         s1' = s2 - beta1 sig(s1,q1) - beta2 sig(s1,q2)                       (41)
         s2' = -alpha1 sig(s2,g1) - alpha2 sig(s2,g2) + e(s1, s2)
-    with e = 0 for the corrected law (claim V2dot-corrected proves s2' has exactly this form)
-    and e = (beta1 q1|s1|^(q1-1) + beta2 q2|s1|^(q2-1)) s2 for the printed law (claim s2dot-24).
+    with the drift e computed from the law's own closed loop
+    (``lgw.theory.mars.mss.s2_drift_numeric``): 0 for the corrected law (claim V2dot-corrected)
+    and (beta1 q1|s1|^(q1-1) + beta2 q2|s1|^(q2-1)) s2 for the printed law (claim s2dot-24).
 
     Honest numerics at the non-Lipschitz zeros: phase 1 integrates (s1, w2), w2 = sig(s2, 1-g1),
     which reaches 0 transversally (w2' -> -(1-g1) alpha1 sgn s2), with a terminal event there;
@@ -60,14 +61,16 @@ def surface_trajectory(law: str, gains: dict[str, float], s1_0: float, s2_0: flo
     # is smooth through the event (the power (g2-g1)/(1-g1) > 1) and root finding is reliable.
     sgn2 = float(np.sign(s2_0))
     sgn1 = 1.0
+    drift = s2_drift_numeric(law)
+    gargs = tuple(float(g[k]) for k in GAIN_ORDER)
 
     def phase1(t, y):
         x1, w2 = y
         z2 = sgn2 * abs(w2) ** (1 / (1 - g1))
         d1 = z2 - b1 * np_sig(x1, q1) - b2 * np_sig(x1, q2)
         dw = (1 - g1) * (-a1 * sgn2 - a2 * sgn2 * abs(z2) ** (g2 - g1))
-        if law == "printed" and x1 != 0.0:
-            dw += (1 - g1) * (b1 * q1 * abs(x1) ** (q1 - 1) + b2 * q2 * abs(x1) ** (q2 - 1)) * w2
+        if drift is not None and z2 != 0.0:  # w2' gets (1-g1)|s2|^(-g1) e(s1, s2)
+            dw += (1 - g1) * abs(z2) ** (-g1) * drift(x1, z2, *gargs)
         return [d1, dw]
 
     def phase2(t, y):

@@ -9,6 +9,9 @@ from lgw.theory.mars.gains import Gains
 from lgw.theory.mars.parameters import AXES
 from lgw.theory.report import ReportSpec, fmt
 
+PAPER_TITLE = ("Mars Powered Descent Phase Guidance Design Based on Fixed-time Stabilization "
+               "Technique (seed 000)")
+
 REFERENCES = (
     "Seed 000: Mars powered-descent phase guidance design based on fixed-time stabilization "
     "technique (the paper under review; equation numbers refer to it).",
@@ -70,7 +73,8 @@ BOUNDS_NOTE = ("The landing-time bounds are the workbench's own: sound for the c
 def report_spec(g: Gains, bounds: dict[str, dict[str, float]]) -> ReportSpec:
     """Seed 000's frame of the report for gain set ``g`` and its ``bounds`` (axis_bounds)."""
     return ReportSpec("Seed 000", tuple(_gain_rows(g)), tuple(gain_warnings(g)),
-                      tuple(BOUND_LABELS), tuple(AXES), bounds, REFERENCES, BOUNDS_NOTE)
+                      tuple(BOUND_LABELS), tuple(AXES), bounds, REFERENCES, BOUNDS_NOTE,
+                      paper_title=PAPER_TITLE)
 
 
 def citation() -> str:

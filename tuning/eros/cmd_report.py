@@ -8,7 +8,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from lgw.tuning import vocabulary as V
-from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts
+from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts, claim_option
+from lgw.tuning.spec import option
 
 
 @dataclass(frozen=True)
@@ -16,14 +17,21 @@ class Options(ReportOptions):
     sim: bool = V.sim_toggle(True, "the scenario and a campaign: the paper's simulation "
                              "claims and the figures (the six variants' tracking errors, "
                              "control and chattering; the campaign's reaching and tracked "
-                             "times)")
+                             "times), and the whole descent to touchdown")
+    descent: bool = option("--descent", None, True, "with --sim: the whole descent from Table "
+                           "1's start to touchdown (six variants, with and without navigation "
+                           "errors; about a minute), its figures and claim gravity-scope",
+                           secondary="--no-descent")
     cases: int = V.cases(100, "Monte Carlo cases for the simulation claims")
     seed: int = V.seed(1, "seed of the campaign")
+    claim: tuple = claim_option("settling-ftsm")
 
     def check(self) -> None:
         super().check()
         self.refuse_unless(self.sim, "cases", "needs --sim (the campaign is the simulation)")
         self.refuse_unless(self.sim, "seed", "needs --sim (the campaign is the simulation)")
+        self.refuse_unless(self.sim, "descent", "needs --sim (the descent is one of the "
+                           "simulations)")
 
 
 @dataclass(frozen=True)
@@ -32,6 +40,7 @@ class Inputs:
     sim: bool
     cases: int
     seed: int
+    descent: bool = True
 
 
 def parts(inp: Inputs, progress: Any) -> ReportParts:
@@ -41,14 +50,15 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
 
     g = inp.gains
     progress.stage("deriving and judging every claim of seed 002")
-    claims = list(all_claims())
+    claims = list(all_claims(g))  # every gain-set claim judged for these gains
     sections = [RS.settling_section(), RS.cubic_section(), RS.gravity_section()]
     if inp.sim:
         from lgw.sim.eros.batch import SimOptions
         from lgw.sim.eros.campaign import monte_carlo, scenario, table
         from lgw.tuning.eros.scenario import claims as scenario_claims
 
-        progress.stage(f"the scenario and a {inp.cases}-case campaign, six variants")
+        progress.stage(f"the scenario and a {inp.cases}-case campaign, six variants; the "
+                       "paper's simulation statements over the gain box and the campaign")
         base = SimOptions()
         scen = scenario(g, base)
         mc = monte_carlo(g, inp.cases, inp.seed, base)
@@ -56,6 +66,12 @@ def parts(inp: Inputs, progress: Any) -> ReportParts:
         sections += RS.table2_sections(scen, table(mc[1]), inp.cases)
         progress.stage("figures")
         sections.append(RS.figures_section(g, base, mc, inp.cases, inp.seed))
+    if inp.sim and inp.descent:
+        progress.stage("the whole descent to touchdown, six variants")
+        from lgw.theory.eros.claims import gravity_scope_claim
+
+        claims.append(gravity_scope_claim())
+        sections += RS.descent_sections()
     return ReportParts(claims, report_spec(g, axis_bounds(g)), sections, coverage_rows())
 
 
@@ -63,5 +79,14 @@ def plan(opts: Options, system: Any) -> ReportJob:
     from lgw.tuning.eros.gainset import resolve
 
     g = resolve(opts.gains)  # validated before anything is written
+    if opts.sim:
+        from lgw.theory.eros import parameters as P
+        from lgw.tuning.eros.cmd_simulate import case_bytes
+        from lgw.tuning.io import check_memory
+
+        check_memory("--cases", opts.cases, case_bytes(P.T_SCENARIO, P.DT_SAMPLE))
     return ReportJob("lgw.tuning.eros.cmd_report:parts",
-                     Inputs(g, opts.sim, opts.cases, opts.seed), opts.out is not None)
+                     Inputs(g, opts.sim, opts.cases, opts.seed, opts.descent),
+                     opts.out is not None, only=tuple(opts.claim),
+                     gains_path="" if opts.gains is None else str(opts.gains),
+                     claim_option=True)

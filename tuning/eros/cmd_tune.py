@@ -87,7 +87,7 @@ class TuneJob(Job):
                 "candidates_tried": len(res["tried"])}
         text = gains_to_toml(g, "lgw tune eros: seed 002 FTSMC gains") + "\n[certificate]\n"
         text += "\n".join(f"{k} = {json.dumps(v)}" for k, v in cert.items()) + "\n"
-        return Outcome({"feasible": True, "tuned_gains": g.to_dict()["gains"],
+        return Outcome({**g.to_dict(), "feasible": True, "tuned_gains": g.to_dict()["gains"],
                         "certificate": cert},
                        render=lambda con: _render(con, g, cert), files={"gains.toml": text})
 
@@ -105,8 +105,12 @@ def _render(con: Any, g: Any, cert: dict[str, Any]) -> None:
 
 
 def plan(opts: Options, system: Any) -> TuneJob:
-    from lgw.theory.eros.parameters import PROBE_MASS
+    from lgw.theory.eros.parameters import DT_SAMPLE, PROBE_MASS, T_SCENARIO
+    from lgw.tuning.eros.cmd_simulate import case_bytes
     from lgw.tuning.eros.design import Request
+    from lgw.tuning.io import check_memory
+
+    check_memory("--fresh-cases", opts.fresh_cases, case_bytes(T_SCENARIO, DT_SAMPLE))
 
     req = Request(ts=opts.ts, u_max=opts.thrust_max / PROBE_MASS, e_max=opts.e_max,
                   v_max=opts.v_max, dbar=opts.dbar, fresh_cases=opts.fresh_cases,

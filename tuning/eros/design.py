@@ -134,3 +134,124 @@ def tune(req: Request, max_sims: int = 16) -> dict[str, Any]:
     return {"infeasible": f"none of the {len(tried)} cheapest candidates with a proven bound "
             f"stays under u_max = {req.u_max} m/s^2 in simulation (lowest design peak "
             f"{min(t['design_peak'] for t in tried):.3g})", "tried": tried}
+
+
+# --- the whole descent --------------------------------------------------------------------------
+#
+# Request: the thrust limit (N), the touchdown speed a case must not exceed (m/s), the law, the
+# navigation error (on by default: the design must survive it) and the campaign sizes.
+#   1. the switching gain's floor from the theory: k must exceed the controller's unknown
+#      acceleration (the two-point model's error along the descent, lgw.theory.eros.descent,
+#      plus SRP at the largest reflectivity), and for the fuzzy blend the drift it drops,
+#      |F| max(1, N/M) (claim fuzzy-reaching); its ceiling is the thrust: k < u_max;
+#   2. grid over alpha (= lam) and k in [floor, ceiling), phi from the sampled-tanh rule
+#      k dt / phi = 0.5 (claim sampled-tanh: stable below 2);
+#   3. fly a design campaign (lgw.sim.eros.descent.dispersions, navigation errors) per
+#      candidate; keep those that land every case at <= land_speed; the least mean propellant
+#      wins; an acceptance campaign on a fresh seed, reported whatever it gives.
+# Sampled evidence, not a proof: the certificate says so.
+
+DESCENT_ALPHAS = (0.02, 0.05, 0.1)
+DESCENT_K_FACTORS = (1.5, 3.0, 6.0)  # multiples of the floor
+
+
+@dataclass(frozen=True)
+class DescentRequest:
+    thrust_max: float = P.THRUST_MAX
+    land_speed: float = P.LAND_SPEED_MAX
+    law: str = "fuzzy-tanh"
+    nav: bool = True
+    design_cases: int = 8
+    fresh_cases: int = 16
+    seed: int = 7
+
+    def __post_init__(self) -> None:
+        from lgw.sim.eros import laws as SL
+
+        for name in ("thrust_max", "land_speed"):
+            v = getattr(self, name)
+            if not (isinstance(v, int | float) and np.isfinite(v) and v > 0):
+                raise ParameterError(f"--{name.replace('_', '-')}", v, "must be a number > 0")
+        SL.parse_variant(self.law)
+        for name in ("design_cases", "fresh_cases"):
+            if getattr(self, name) < 1:
+                raise ParameterError(f"--{name.replace('_', '-')}", getattr(self, name),
+                                     "must be >= 1")
+
+
+def descent_k_floor(law: str, g: Gains) -> dict[str, float]:
+    """The switching gain's floor for the descent (m/s^2): the unknown acceleration dbar (the
+    two-point model's largest error along the descent profile, 161 points, plus SRP at the
+    largest reflectivity) and, for the fuzzy blend, the drift |F| <= |g| + |reference accel|
+    times max(1, N/M)."""
+    from lgw.sim.eros.descent import DescentOptions
+    from lgw.theory.eros import descent as TD
+
+    prof = DescentOptions().profile()
+    tt = np.linspace(0.0, prof.t_touchdown, 161)
+    rows = TD.fit_error_along(prof, tt)
+    dbar = max(r["abs"] for r in rows) + P.SRP_ACCEL * P.SRP_CR_RANGE[1] / 1.5
+    acc = float(np.linalg.norm(prof.evaluate(tt)[2], axis=0).max())
+    fbar = max(r["g_poly"] for r in rows) * (1 + max(r["rel"] for r in rows)) + acc
+    floor = dbar if not law.startswith("fuzzy") else max(dbar, fbar * max(1.0, g.N / g.M))
+    return {"dbar": dbar, "fbar": fbar, "k_floor": floor}
+
+
+def fly_descent(g: Gains, req: DescentRequest, n: int, seed: int) -> dict[str, float]:
+    """A descent campaign: outcomes, the largest touchdown speed, mean and largest propellant."""
+    from lgw.sim.eros import laws as SL
+    from lgw.sim.eros.descent import (
+        OUTCOMES,
+        DescentOptions,
+        Navigation,
+        Probe,
+        dispersions,
+        simulate_descent,
+    )
+
+    law, sw = SL.parse_variant(req.law)
+    o = DescentOptions(law=law, switch=sw, probe=Probe(thrust_max=req.thrust_max),
+                       nav=Navigation.typical(seed) if req.nav else Navigation(),
+                       land_speed=req.land_speed, stride=0)
+    d = dispersions(n, seed)
+    r = simulate_descent(d["e0"], d["ed0"], g, o, srp=d["srp"], case_phase=d["case_phase"],
+                         nav_ids=d["nav_ids"])
+    landed = r.outcome == OUTCOMES.index("landed")
+    sp = r.touchdown["speed"]
+    return {"cases": n, "landed": int(landed.sum()),
+            "speed_max": float(np.nanmax(sp)) if np.isfinite(sp).any() else float("nan"),
+            "fuel_mean": float(np.mean(r.fuel)), "fuel_max": float(np.max(r.fuel)),
+            "site_distance_max": float(np.nanmax(r.touchdown["site_distance_m"]))
+            if landed.any() else float("nan")}
+
+
+def tune_descent(req: DescentRequest) -> dict[str, Any]:
+    """The descent design (module note above): "gains", "floor", "design", "fresh", "tried",
+    or "infeasible" with the reason."""
+    from lgw.sim.eros.descent import descent_gains
+
+    base = descent_gains()
+    fl = descent_k_floor(req.law, base)
+    u_max = req.thrust_max / P.PROBE_MASS
+    tried, best = [], None
+    for a in DESCENT_ALPHAS:
+        for f in DESCENT_K_FACTORS:
+            k = f * fl["k_floor"]
+            if not k < u_max:
+                continue
+            g = base.replace(alpha=a, lam=a, k=k, phi=2.0 * k * P.DESCENT_DT)
+            d = fly_descent(g, req, req.design_cases, req.seed)
+            tried.append({"alpha": a, "k": k, "phi": g.phi, **d})
+            if d["landed"] == d["cases"] and d["speed_max"] <= req.land_speed and \
+                    (best is None or d["fuel_mean"] < best[1]["fuel_mean"]):
+                best = (g, d)
+    if best is None:
+        why = (f"k floor {fl['k_floor']:.3g} m/s^2 >= u_max {u_max:.3g} m/s^2" if not tried
+               else f"none of {len(tried)} candidates landed every design case at <= "
+               f"{req.land_speed} m/s")
+        return {"infeasible": why, "floor": fl, "tried": tried}
+    g, d = best
+    fresh = fly_descent(g, req, req.fresh_cases, req.seed + 1000)
+    return {"gains": g, "floor": fl, "design": d, "fresh": fresh, "tried": tried,
+            "fresh_meets": bool(fresh["landed"] == fresh["cases"]
+                                and fresh["speed_max"] <= req.land_speed)}

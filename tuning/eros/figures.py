@@ -238,3 +238,241 @@ def _case0(r: Result) -> Result:
     """Case 0 of a run (the figures draw case 0; metrics of it alone for the bars)."""
     return replace(r, e=r.e[:, :1], ed=r.ed[:, :1], s=r.s[:, :1], u=r.u[:, :1], pos=r.pos[:1],
                    vel=r.vel[:1], nonfinite=r.nonfinite[:1])
+
+
+# --- the whole descent ------------------------------------------------------------------------
+
+FIG_POINTS = 400  # history points per curve in the descent figures (the histories decimated)
+
+
+def _decimate(n: int, k: int = FIG_POINTS) -> np.ndarray:
+    return np.unique(np.linspace(0, n - 1, min(n, k)).round().astype(int))
+
+
+def _valid(r, i: int = 0) -> np.ndarray:
+    """Sample indices where case i still flew (histories are NaN after the end)."""
+    return np.flatnonzero(np.isfinite(r.pos[:, i, 0]))
+
+
+def _velocity(r, i: int = 0) -> np.ndarray:
+    """True velocity history (KR, 3): e' + the profile's velocity."""
+    return r.ed[:, i] + r.options.profile().evaluate(r.t)[1].T
+
+
+def heights(pts: np.ndarray) -> np.ndarray:
+    """Distance (m) of each point to the shape model (the nearest point of any face)."""
+    from lgw.theory.eros.descent import height_above
+
+    return np.array([height_above(p) for p in pts])
+
+
+def trajectory_figure(runs: dict, title: str) -> bytes:
+    """The trajectory over the shape model: (a) the whole body and the path from Table 1's start,
+    (b) the last kilometre around the touchdown site (faces within 0.8 km drawn)."""
+    from lgw.theory.eros.polyhedron import eros_polyhedron
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    E = eros_polyhedron()
+    tri = E.vertices[E.faces] / 1e3
+    first = next(iter(runs.values()))
+    site = first.options.profile().site.point / 1e3
+    with styled() as plt:
+        fig = plt.figure(figsize=(12.5, 5.6))
+        for j, (zoom, sub) in enumerate(((False, "(a) the whole descent"),
+                                         (True, "(b) the terminal segment"))):
+            ax = fig.add_subplot(1, 2, j + 1, projection="3d")
+            if zoom:
+                near = np.all(np.abs(tri - site).max(axis=2) < 0.8, axis=1)
+                faces = tri[near]
+            else:
+                faces = tri[::3]
+            col = Poly3DCollection(faces, facecolor="0.75", edgecolor="0.55", lw=0.15,
+                                   alpha=0.35 if not zoom else 0.55)
+            ax.add_collection3d(col)
+            for name, r in runs.items():
+                idx = _valid(r)
+                p = r.pos[idx, 0] / 1e3
+                if zoom:
+                    p = p[np.linalg.norm(p - site, axis=1) < 1.0]
+                law, sw = SL.parse_variant(name)
+                ax.plot(*p.T, color=COLOURS[law], ls=LINES[sw], lw=1.3, label=label(name))
+                end = r.pos_end[0] / 1e3
+                ax.scatter(*end, color=COLOURS[law], s=14)
+            ax.scatter(*site, marker="x", color="k", s=40, label="touchdown site")
+            if zoom:
+                lo, hi = site - 0.8, site + 0.8
+            else:
+                pts = np.vstack([tri.reshape(-1, 3), first.pos[_valid(first), 0] / 1e3])
+                lo, hi = pts.min(axis=0), pts.max(axis=0)
+            c, half = (lo + hi) / 2, (hi - lo).max() / 2
+            ax.set_xlim(c[0] - half, c[0] + half)
+            ax.set_ylim(c[1] - half, c[1] + half)
+            ax.set_zlim(c[2] - half, c[2] + half)
+            ax.set_xlabel("x [km]")
+            ax.set_ylabel("y [km]")
+            ax.set_zlabel("z [km]")
+            ax.set_title(sub)
+            ax.view_init(elev=20, azim=-60 if not zoom else -30)
+        handles, labels = fig.axes[0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="lower center", ncol=4, frameon=False)
+        fig.suptitle(title)
+        fig.tight_layout(rect=(0, 0.07, 1, 1))
+        return png_bytes(fig)
+
+
+def altitude_speed_figure(runs: dict, title: str) -> bytes:
+    """Height above the shape model and speed relative to the surface against time, case 0 of
+    each variant, with the reference's; the last 2000 s in the right panels."""
+    first = next(iter(runs.values()))
+    prof = first.options.profile()
+    with styled() as plt:
+        fig, ax = plt.subplots(2, 2, figsize=(12.5, 7.2))
+        idx = _decimate(len(first.t))
+        tref = first.t[idx]
+        pref, vref, _ = prof.evaluate(tref)
+        href = heights(pref.T)
+        for col, t_lo in ((0, -np.inf), (1, prof.t_touchdown - 2000.0)):
+            m = tref >= t_lo
+            ax[0, col].plot(tref[m], href[m], color="k", lw=1.0, ls=":", label="reference")
+            ax[1, col].plot(tref[m], np.linalg.norm(vref, axis=0)[m], color="k", lw=1.0,
+                            ls=":", label="reference")
+        for name, r in runs.items():
+            ok = _valid(r)
+            ii = ok[_decimate(len(ok))]
+            t = np.append(r.t[ii], r.t_outcome[0])
+            h = np.append(heights(r.pos[ii, 0]), 0.0 if r.outcome[0] <= 1 else np.nan)
+            v = np.append(np.linalg.norm(_velocity(r)[ii], axis=1),
+                          np.linalg.norm(r.vel_end[0]))
+            for col, t_lo in ((0, -np.inf), (1, prof.t_touchdown - 2000.0)):
+                m = t >= t_lo
+                ax[0, col].plot(t[m], h[m], label=label(name), **style(name))
+                ax[1, col].plot(t[m], v[m], label=label(name), **style(name))
+        for col in (0, 1):
+            ax[0, col].set_ylabel("height above the shape model [m]")
+            ax[1, col].set_ylabel("speed relative to the surface [m/s]")
+            ax[1, col].set_xlabel("t [s]")
+        limit_line(ax[1, 1], first.options.land_speed,
+                   f"landed / crashed threshold {first.options.land_speed:g} m/s (chosen)")
+        ax[0, 0].set_title("(a) the whole descent")
+        ax[0, 1].set_title("(b) the last 2000 s")
+        shared_legend(fig, ax.ravel(), ncol=4)
+        fig.suptitle(title)
+        fig.tight_layout(rect=(0, 0.08, 1, 1))
+        return png_bytes(fig)
+
+
+def thrust_figure(runs: dict, title: str) -> bytes:
+    """Thrust per axis m u_i (N) against time and the limit, per variant; the command before
+    the limit dotted where it differs."""
+    names = list(runs)
+    ncol = min(3, len(names))
+    nrow = int(np.ceil(len(names) / ncol))
+    with styled() as plt:
+        fig, ax = plt.subplots(nrow, ncol, figsize=(4.3 * ncol + 0.5, 3.3 * nrow + 0.7),
+                               sharex=True, squeeze=False)
+        for a, name in zip(ax.ravel(), names, strict=False):
+            r = runs[name]
+            ok = _valid(r)
+            pr = r.options.probe
+            m = r.m[ok, 0]
+            for k in range(3):
+                a.step(r.t[ok], m * r.u[ok, 0, k], where="post", color=f"C{k + 3}", lw=0.8,
+                       label=f"F_{AXES[k]}")
+                clipped = np.abs(r.u_cmd[ok, 0, k] - r.u[ok, 0, k]) > 0
+                if clipped.any():
+                    a.plot(r.t[ok][clipped], (m * r.u_cmd[ok, 0, k])[clipped], ".",
+                           color=f"C{k + 3}", ms=2, label="command before the limit")
+            if np.isfinite(pr.thrust_max):
+                limit_line(a, pr.thrust_max, f"limit {pr.thrust_max:g} N ({pr.limit})",
+                           both_signs=True)
+            a.set_title(label(name))
+            a.set_yscale("symlog", linthresh=0.1)
+        for a in ax[-1]:
+            a.set_xlabel("t [s]")
+        for a in ax[:, 0]:
+            a.set_ylabel("thrust [N] (symlog)")
+        for a in ax.ravel()[len(names):]:
+            a.set_visible(False)
+        shared_legend(fig, ax.ravel()[:len(names)], ncol=5)
+        fig.suptitle(title)
+        fig.tight_layout(rect=(0, 0.07, 1, 1))
+        return png_bytes(fig)
+
+
+def fit_error_figure(rows: list[dict], path_rows: list[dict] | None, title: str) -> bytes:
+    """The two-point model's relative error against the polyhedron along the descent (the
+    reference), and along a flown trajectory if given; against time and against height."""
+    with styled() as plt:
+        fig, ax = plt.subplots(1, 2, figsize=(12.5, 4.4))
+        for rr, lab, st in ((rows, "along the reference", {"color": "k"}),
+                            (path_rows, "along the flown trajectory",
+                             {"color": "C2", "ls": "--"})):
+            if not rr:
+                continue
+            t = np.array([r["t"] for r in rr])
+            h = np.array([r["height_m"] for r in rr])
+            e = 100 * np.array([r["rel"] for r in rr])
+            ax[0].plot(t, e, label=lab, **st)
+            ax[1].plot(np.maximum(h, 1e-2), e, label=lab, **st)
+        ax[0].set_xlabel("t [s]")
+        ax[1].set_xlabel("height above the shape model [m] (log)")
+        ax[1].set_xscale("log")
+        for a in ax:
+            a.set_ylabel("|g_2pt - g_poly| / |g_poly| [%]")
+        shared_legend(fig, ax, ncol=2)
+        fig.suptitle(title)
+        fig.tight_layout(rect=(0, 0.08, 1, 1))
+        return png_bytes(fig)
+
+
+def descent_figures(runs: dict, fit_rows: list[dict] | None = None) -> list[Figure]:
+    """The descent's figures for ``lgw simulate eros --scenario descent --plot`` and the report:
+    runs = variant name -> DescentResult (case 0 drawn; histories needed, stride >= 1)."""
+    from lgw.theory.eros.descent import fit_error_along
+
+    first = next(iter(runs.values()))
+    o = first.options
+    prof = o.profile()
+    what = (f"plant gravity {o.gravity!r}, controller {o.controller_gravity!r}; probe "
+            f"{o.probe.mass:g} kg, {o.probe.thrust_max:g} N ({o.probe.limit}), Isp "
+            f"{o.probe.isp:g} s; sampling {o.dt:g} s; navigation "
+            f"{'errors on' if o.nav.on else 'perfect'}; SRP {o.env.srp:.2g} m/s^2 (unknown)")
+    outcomes = "; ".join(
+        f"{label(n)}: {r.outcome_names()[0]} at {r.t_outcome[0]:.1f} s"
+        + (f", {r.touchdown['speed'][0]:.3f} m/s, fuel {r.fuel[0]:.2f} kg"
+           if np.isfinite(r.touchdown["speed"][0]) else "") for n, r in runs.items())
+    if fit_rows is None:
+        fit_rows = fit_error_along(prof, np.linspace(0.0, prof.t_touchdown, 81))
+    ok = _valid(first)
+    ii = ok[_decimate(len(ok), 60)]
+    path_rows = _fit_rows_at(first.t[ii], first.pos[ii, 0])
+    return [
+        Figure("eros_descent_trajectory.png",
+               f"The whole descent over the shape model of Eros (body frame, km): Table 1's "
+               f"start to touchdown at the site nearest Table 1's landing position ({what}). "
+               f"{outcomes}.",
+               trajectory_figure(runs, "Seed 002: the descent to the surface of Eros")),
+        Figure("eros_descent_altitude_speed.png",
+               "Height above the shape model (distance to the nearest face) and speed relative "
+               "to the surface against time, flown and reference; the dashed line is the "
+               f"landed / crashed threshold ({what}).",
+               altitude_speed_figure(runs, "Seed 002 descent: height and speed")),
+        Figure("eros_descent_thrust.png",
+               f"Thrust per axis (N, symmetric log scale) against its limit; dots: the "
+               f"command before the limit where the limit cut it ({what}).",
+               thrust_figure(runs, "Seed 002 descent: thrust against the limit")),
+        Figure("eros_descent_fit_error.png",
+               "The fitted two-point model (2) against the polyhedron along the descent: "
+               "relative acceleration error against time and against the height above the "
+               "surface (it is the controller's model; the plant flies the polyhedron).",
+               fit_error_figure(fit_rows, path_rows,
+                                "Seed 002 descent: two-point gravity error")),
+    ]
+
+
+def _fit_rows_at(t: np.ndarray, pts: np.ndarray) -> list[dict]:
+    from lgw.theory.eros.descent import fit_error, height_above
+
+    err = fit_error(pts)
+    return [{"t": float(tt), "height_m": height_above(p), "rel": float(err["rel"][i])}
+            for i, (tt, p) in enumerate(zip(t, pts, strict=True))]

@@ -10,6 +10,7 @@ SYSTEM = System(
     summary="433 Eros landing (fuzzy FTSMC)",
     gains=f"{_M}.gainset", claims="lgw.theory.eros.claims:all_claims",
     interop="lgw.sim.eros.interop",
+    kernels="lgw.sim.eros.batch:warmup_kernels",
     verbs={
         "bounds": Verb(f"{_M}.cmd_bounds", "settling (5)/(6) and reaching times, printed "
                          "vs derived, for a gain set"),
@@ -21,8 +22,10 @@ SYSTEM = System(
                          "HTML) with every claim's verdict"),
         "tune": Verb(f"{_M}.cmd_tune", "alpha, beta, p/q, k for a settling target and a "
                        "control limit, with a certificate"),
-        "compare": NotApplicable("pending"),
+        "compare": Verb(f"{_M}.cmd_compare", "the six controllers on Table 2's metrics and "
+                          "the tracking times, 15 s scenario (table, JSON, figure)"),
         "optimal": NotApplicable("pending"),
-        "warmup": NotApplicable("pending"),
+        "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
+                       "one step"),
     },
 )

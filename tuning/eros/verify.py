@@ -207,7 +207,7 @@ def judge(ctx: Context, group: str, X: np.ndarray,
     grow = max(ctx.factors.get(c, 1.0) for c in claims)
     f = fly(e0, ed0, ph, g, mode, horizon(np.where(np.isfinite(tt), tt, 0.0) * max(grow, 1.0)),
             reference=ctx.fine)
-    bad = {OUTCOMES.index("nonfinite"): NO_INTEGRATOR, OUTCOMES.index("surface_contact"): CONTACT}
+    bad = {OUTCOMES.index("nonfinite"): NO_INTEGRATOR, OUTCOMES.index("crashed"): CONTACT}
     excl = [bad.get(int(o)) for o in f["outcome"]]
     s0 = np.abs(ed0 + g.alpha * e0 + g.beta * np.sign(e0) * np.abs(e0) ** g.r)
     off_surface = s0 > S_TOL

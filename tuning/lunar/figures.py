@@ -274,3 +274,83 @@ def section5_png(res, i: int = 0, ideal=None) -> bytes:
     fig.suptitle("seed 001 Section 5 case (lgw)")
     fig.tight_layout()
     return png_bytes(fig, dpi=90)
+
+
+def bandwidth_figure(bw, ideal: dict | None, title: str, targets: tuple[float, float]
+                     | None = None, chosen: float | None = None) -> bytes:
+    """The command filter's effect (``lgw.tuning.lunar.design.Bandwidth``): final height and
+    velocity errors and the time the torque saturates against wn (log axis), the run at dt
+    (filled) and at dt/2 (open) for every wn, surface contact and other stops marked at the
+    top, the robust band shaded, the chosen wn marked, and the ideal-pointing run (``ideal``:
+    its numbers) as a horizontal line."""
+    pts = bw.points
+    wn = np.array([p.wn for p in pts])
+    done = np.array([p.outcome == "completed" for p in pts])
+    with styled() as plt:
+        fig, ax = plt.subplots(1, 3, figsize=(13.5, 4.4))
+        for a, key, fine, label, ideal_key, tgt in (
+                (ax[0], "eh", "eh_fine", "|e_h(t_f)| [m] (log)", "eh_final_m",
+                 targets[0] if targets else None),
+                (ax[1], "ev", "ev_fine", "|e_v(t_f)| [m/s] (log)", "ev_final_norm_m_s",
+                 targets[1] if targets else None)):
+            y = np.abs([getattr(p, key) for p in pts])
+            yf = np.abs([getattr(p, fine) for p in pts])
+            a.plot(wn[done], y[done], "o-", color="C0", label="coupled, dt")
+            a.plot(wn, yf, "s", mfc="none", color="C1", label="coupled, dt/2")
+            top = max(float(np.nanmax(np.where(np.isfinite(y), y, np.nan))), 1.0) * 3
+            for p in pts:
+                if p.outcome != "completed":
+                    a.plot([p.wn], [top], "x", color="#b00000", ms=8,
+                           label=f"stopped: {p.outcome}")
+            if ideal is not None:
+                a.axhline(abs(ideal[ideal_key]), color="C2", ls="--",
+                          label="ideal pointing (no filter in the loop)")
+            if tgt is not None:
+                limit_line(a, tgt, "target")
+            a.set_yscale("log")
+            a.set_ylabel(label)
+        ax[2].plot(wn, [p.torque_saturated_s for p in pts], "o-", color="C3",
+                   label="coupled, dt")
+        ax[2].set_ylabel("torque (28) saturated [s]")
+        for a in ax:
+            a.set_xscale("log")
+            a.set_xlabel("command filter natural frequency wn [rad/s] (log)")
+            if bw.band is not None:
+                a.axvspan(bw.band[0], bw.band[1], color="#1b7837", alpha=0.12,
+                          label="robust band")
+            if chosen is not None:
+                a.axvline(chosen, color="#1b7837", lw=1.4, label=f"wn = {chosen:g} rad/s")
+        ax[0].set_title("(a) height error at t_f")
+        ax[1].set_title("(b) velocity error at t_f")
+        ax[2].set_title("(c) time the torque saturates")
+        shared_legend(fig, ax, ncol=4)
+        fig.suptitle(title)
+        fig.tight_layout(rect=(0, 0.1, 1, 1))
+        return png_bytes(fig)
+
+
+def compare_figure(runs: list[tuple[str, str, BatchResult]], title: str) -> bytes:
+    """``lgw compare lunar``: e_h and |e_v| against time for each condition (colour) and
+    pointing (solid coupled, dashed ideal); ``runs``: (condition, pointing, recorded run)."""
+    conds = list(dict.fromkeys(c for c, _, _ in runs))
+    with styled() as plt:
+        fig, ax = plt.subplots(1, 2, figsize=(12.5, 4.6))
+        for cond, pointing, res in runs:
+            j = conds.index(cond)
+            ls = "-" if pointing == "coupled" else "--"
+            lab = f"{cond}, {pointing}"
+            ax[0].plot(res.t, res.out["eh"][:, 0], ls, color=f"C{j}", label=lab)
+            ax[1].plot(res.t, np.linalg.norm(res.out["ev"][:, :, 0], axis=1), ls,
+                       color=f"C{j}", label=lab)
+        ax[0].set_ylabel("height error e_h [m] (symlog)")
+        ax[0].set_yscale("symlog", linthresh=1.0)
+        ax[1].set_ylabel("|e_v| [m/s] (log)")
+        ax[1].set_yscale("log")
+        for a in ax:
+            a.set_xlabel("t [s]")
+        ax[0].set_title("(a) height")
+        ax[1].set_title("(b) velocity")
+        shared_legend(fig, ax, ncol=4)
+        fig.suptitle(title)
+        fig.tight_layout(rect=(0, 0.14, 1, 1))
+        return png_bytes(fig)

@@ -21,6 +21,18 @@ def document(g: Gains) -> dict[str, Any]:
     return {"gains": g.to_dict()}
 
 
+def run_defaults(g: Gains) -> dict[str, float]:
+    """The run options a tuned file fixes (``lgw.sim.lunar.closed_loop.RunOptions`` field ->
+    value): its [command_filter] wn and its [vehicle] thrust_max.  The command line's
+    --cmd-wn / --thrust-max override them."""
+    out = {}
+    if "command_filter" in g.extra:
+        out["cmd_wn"] = g.extra["command_filter"]["wn"]
+    if "vehicle" in g.extra:
+        out["thrust_max"] = g.extra["vehicle"]["thrust_max"]
+    return out
+
+
 def example() -> str:
     """A valid gain set other than the paper's (TOML), for the options test."""
     d = paper_gains().to_dict()
@@ -34,4 +46,4 @@ def example() -> str:
     return "\n".join(lines) + "\n"
 
 
-__all__ = ["default", "document", "example", "load", "resolve"]
+__all__ = ["default", "document", "example", "load", "resolve", "run_defaults"]

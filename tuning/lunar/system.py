@@ -11,6 +11,7 @@ SYSTEM = System(
     summary="lunar descent (adaptive backstepping)",
     gains=f"{_M}.gainset", claims="lgw.theory.lunar.claims:all_claims",
     interop="lgw.sim.lunar.interop",
+    kernels="lgw.sim.lunar.batch:warmup_kernels",
     verbs={
         "bounds": Verb(f"{_M}.cmd_bounds", "the (18) constants beside the true filter L2 "
                          "gains, and (19)-(21) for a case"),
@@ -20,9 +21,12 @@ SYSTEM = System(
                          "against measured runs"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
-        "tune": NotApplicable("pending"),
-        "compare": NotApplicable("pending"),
+        "tune": Verb(f"{_M}.cmd_tune", "gains, command filter and thrust redundancy for a "
+                       "tracking target and the thrust limit with the failure, certified"),
+        "compare": Verb(f"{_M}.cmd_compare", "Section 5 with and without failure and "
+                          "saturation, ideal against coupled pointing, the filter swept"),
         "optimal": NotApplicable("pending"),
-        "warmup": NotApplicable("pending"),
+        "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
+                       "one step"),
     },
 )

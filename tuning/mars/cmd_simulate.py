@@ -38,7 +38,7 @@ from lgw.theory.mars.parameters import (
 )
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
-from lgw.tuning.io import Stream, json_stream
+from lgw.tuning.io import Stream, available_memory, json_stream
 from lgw.tuning.options import Number, choice
 from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
@@ -92,10 +92,6 @@ class Options(V.Dask):
     method: str = V.method("rk4")
     rtol: float = V.rtol(DOPRI_RTOL)
     atol: float = V.atol(DOPRI_ATOL, "m, m/s, kg")
-    kernel: str = option("--kernel", choice(("scalar", "lanes")), "scalar",
-                         "scalar: one case at a time; lanes: 16 cases stepped together, the "
-                         "law in SIMD across them (the same results to round-off; faster on "
-                         "campaigns: docs/sim.md)")
     max_step: float = option("--max-step", Number(0, 1e3, lo_open=True, unit="s"),
                              DOPRI_MAX_STEP, "dopri5 largest step, s (only with --method "
                              "dopri5)")
@@ -126,7 +122,7 @@ class Options(V.Dask):
             for name in ("dispersion", "initial_states", "cases", "seed", "disturbance",
                          "dist_amplitude", "thrust_max", "limit", "guidance_drag", "isp",
                          "m_dry", "method", "rtol", "atol", "max_step", "land_r", "land_v",
-                         "reference", "workers", "scheduler", "kernel"):
+                         "reference", "workers", "scheduler"):
                 r(False, name, "does not apply with --fig6 (the experiment flies Table I "
                   "with only s1x(0) varied; the law, --dt, --eps, --drag and --t-max apply)")
         r(self.disturbance != "none", "dist_amplitude", "needs --disturbance sin, random or "
@@ -144,7 +140,6 @@ class Options(V.Dask):
         r(not self.reference, "dt", "does not apply with --reference (solve_ivp chooses its "
           "steps)")
         r(not self.reference, "workers", "does not apply with --reference (it runs in-process)")
-        r(not self.reference, "kernel", "does not apply with --reference (solve_ivp per case)")
         r(not self.reference, "scheduler", "does not apply with --reference (it runs "
           "in-process)")
         r(self.dispersion is not None or self.disturbance == "random" or self.fig6, "seed",
@@ -191,10 +186,30 @@ class SimulateJob(Job):
             # local campaigns keep their per-case results on disk (flat memory)
             res = campaign.run_campaign(r0, v0, m0, self.gains, progress=progress.live,
                                         spill=not self.executor, **self.executor, **self.sim)
+        # convergence measured, never assumed (lgw.sim.mars.converged): the cases (all, or an
+        # even spread of a large campaign) flown again finer, every printed number compared;
+        # RK4 cases whose outcome changes with the step are refined until it settles
+        progress.stage("convergence check")
+        from lgw.sim.mars import converged as CV
+
+        method = "reference" if self.reference else self.sim.get("method", "rk4")
+        fly = CV.flier(r0, v0, m0, self.gains, self.sim, reference=self.reference)
+        conv, fine, idx = CV.check(res, fly, method=method, rtol=self.sim.get("rtol"),
+                                   atol=self.sim.get("atol"))
+        if method == "rk4" and conv.outcome_changed:
+            res, _ = CV.refine(res, fine, idx, fly, conv)
         summ = campaign.summarize(res)
         summ["settings"] = settings_used(res, self.sim, reference=self.reference,
                                          **self.described)
-        cases = Stream(encoded=campaign.CaseJson(res))
+        summ["convergence"] = conv.to_dict()
+
+        def records() -> Any:
+            return with_checks(campaign.iter_case_records(res), conv)
+
+        def encoded() -> Any:  # the same records as JSON text, a chunk at a time
+            return campaign.CaseJson(res, post=lambda recs: with_checks(recs, conv))
+
+        cases = Stream(encoded=encoded())
         figures = []
         if self.want_figures:
             progress.stage("figures")
@@ -203,13 +218,11 @@ class SimulateJob(Job):
             figures = simulation_figures(self.gains, res, self.sim, self.states)
         head = {"command": "simulate mars", **self.gains.to_dict()}
         files = {"summary.json": json_stream({**head, **summ}, indent=1),
-                 "cases.json": json_stream({**head, "cases": Stream(
-                     encoded=campaign.CaseJson(res))}),
-                 "cases.csv": Stream(
-                     write=lambda f: write_cases_csv(campaign.iter_case_records(res), f))}
+                 "cases.json": json_stream({**head, "cases": Stream(encoded=encoded())}),
+                 "cases.csv": Stream(write=lambda f: write_cases_csv(records(), f))}
         return Outcome({"summary": summ, "cases": cases},
-                       render=lambda con: _render(res, summ, con), files=files,
-                       figures=figures)
+                       render=lambda con: _render(res, summ, con, conv), files=files,
+                       figures=figures, flags=conv.flags("simulate mars"))
 
 
 @dataclass(frozen=True)
@@ -226,6 +239,17 @@ class Fig6Job(Job):
         progress.stage("seed 000 Fig. 6: five s1x(0), flown to t_max")
         res6 = fig6(self.gains, law=self.law, dt=self.dt, eps=self.eps, t_max=self.t_max,
                     drag=self.drag)
+        # convergence (lgw.sim.convergence): the same five runs at dt/2, every printed time
+        from lgw.sim.convergence import Tol, compare_cases
+
+        half = fig6(self.gains, law=self.law, dt=res6["dt"] / 2, eps=self.eps,
+                    t_max=self.t_max, drag=self.drag)
+        conv = compare_cases(res6["rows"], half["rows"],
+                             {k: Tol(atol=1e-3) for k in ("t_s2x", "t_s1x", "landing_time")},
+                             how="step halving", outcome_key="s1x0",
+                             base_label=f"RK4 dt = {res6['dt']:g} s",
+                             check_label=f"RK4 dt = {res6['dt'] / 2:g} s")
+        res6["convergence"] = conv.to_dict()
         figures = []
         if self.want_figures:
             from lgw.theory.sections import Figure
@@ -234,8 +258,13 @@ class Fig6Job(Job):
             figures = [Figure("settling_fig6.png", "settling against s1x(0)",
                               settling_figure(res6, "Seed 000 Fig. 6: settling against "
                                               "s1x(0)"))]
-        return Outcome(dict(res6), render=lambda con: _print_fig6(res6, con),
-                       files={"fig6.json": DOCUMENT}, figures=figures)
+        def render(con: Any) -> None:
+            _print_fig6(res6, con)
+            for line in conv.notes():
+                con.print(line, markup=False)
+
+        return Outcome(dict(res6), render=render, files={"fig6.json": DOCUMENT},
+                       figures=figures, flags=conv.flags("simulate mars --fig6"))
 
 
 def plan(opts: Options, system: Any) -> Job:
@@ -262,6 +291,11 @@ def plan(opts: Options, system: Any) -> Job:
             thrust_max = THRUST_MAX_AXIS  # seed 000 Part 3
     elif opts.initial_states is not None:
         states = campaign.read_states_csv(opts.initial_states)
+        below = np.flatnonzero(states[0][:, 2] < 0)
+        if below.size:  # the mission starts above the ground plane (lgw.sim.results)
+            raise ParameterError(f"--initial-states row {below[0] + 2} column rz",
+                                 float(states[0][below[0], 2]), "must be >= 0 m: the state "
+                                 "starts below the ground (the landing site's plane z = 0)")
         check_memory(len(states[0]))
     else:
         states = campaign.table1_state()
@@ -273,8 +307,6 @@ def plan(opts: Options, system: Any) -> Job:
                                guidance_drag=opts.guidance_drag)
     if opts.method != "rk4":
         sim.update(method=opts.method, rtol=opts.rtol, atol=opts.atol, max_step=opts.max_step)
-    if opts.kernel != "scalar":
-        sim["kernel"] = opts.kernel
     if opts.reference:
         sim.pop("dt")
     executor: dict[str, Any] = {}
@@ -294,18 +326,6 @@ def check_memory(n: int) -> None:
         raise ParameterError("--cases", n, f"needs about {need / 2**30:.1f} GiB for the "
                              f"per-case results; this machine has {avail / 2**30:.1f} GiB "
                              "available (split the campaign, or use --scheduler)")
-
-
-def available_memory() -> int | None:
-    """Available memory in bytes (Linux /proc/meminfo), or None when unknown."""
-    try:
-        with open("/proc/meminfo") as f:
-            for line in f:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
 
 
 def fig6(gains: Any, *, law: str = "corrected", dt: float | None = None,
@@ -353,8 +373,9 @@ def _print_fig6(out: dict[str, Any], con: Any) -> None:
 def _print_summary(summ: dict[str, Any], con: Any) -> None:
     from lgw.tuning.tables import result_table
 
-    title = (f"{summ['cases']} cases: {summ['landed']} landed, {summ['nonfinite']} "
-             f"non-finite, {summ['ground_contact']} ground contacts, "
+    title = (f"{summ['cases']} cases: {summ['landed']} landed, {summ['crashed']} crashed, "
+             f"{summ['nonfinite']} non-finite, {summ['ground_contact']} below r_z = 0 before "
+             "the outcome, "
              f"{summ['fuel_exhausted']} out of propellant (m_dry {summ['m_dry']:g} kg)"
              + (f", {summ['step_limit']} stopped at the dopri5 step limit"
                 if summ["step_limit"] else "")
@@ -365,26 +386,35 @@ def _print_summary(summ: dict[str, Any], con: Any) -> None:
     rows += [(f"peak thrust {ax} N", summ["peak_thrust_N"][ax]) for ax in "xyz"]
     rows.append(("time saturated s", summ["time_saturated_s"]))
     rows.append(("min altitude m (all cases)", summ["min_altitude_m"]))
-    result_table(con, title, ("quantity (landed cases)", "min", "median", "max"),
-                 [(name, _fmt(st["min"], ".4g"), _fmt(st["median"], ".4g"),
+    if summ["crashed"]:
+        rows.append(("impact speed m/s (crashed)", summ["impact_speed_mps"]))
+        rows.append(("contact time s (crashed)", summ["contact_time_s"]))
+    result_table(con, title, ("quantity (landed cases)", "cases", "min", "median", "max"),
+                 [(name, str(st["n"]), _fmt(st["min"], ".4g"), _fmt(st["median"], ".4g"),
                    _fmt(st["max"], ".4g")) for name, st in rows])
     for c in summ.get("nonfinite_cases", []):
         con.print(f"NON-FINITE case {c['case']}: r0 = {c['r0']}, v0 = {c['v0']}, "
                   f"m0 = {c['m0']}, stopped at t = {c['t_end']} s", markup=False)
 
 
-def case_flags(res: Any) -> np.ndarray:
+def case_flags(res: Any, conv: Any = None) -> np.ndarray:
     """True for the cases the per-case table lists first: not landed, non-finite, below ground,
-    out of propellant or stopped at the step limit."""
-    return (~res.landed | res.nonfinite | res.ground_contact | res.fuel_exhausted
-            | res.step_limit)
+    out of propellant, stopped at the step limit, or (with the convergence record ``conv``)
+    unconverged or refined."""
+    out = (~res.landed | res.nonfinite | res.ground_contact | res.fuel_exhausted
+           | res.step_limit)
+    if conv is not None:
+        bad = [c for c, ok in conv.case_ok.items() if not ok] + list(conv.refined)
+        out = out.copy()
+        out[np.asarray(bad, np.int64)] = True
+    return out
 
 
-def shown_cases(res: Any, rows: int = PER_CASE_ROWS) -> np.ndarray:
+def shown_cases(res: Any, rows: int = PER_CASE_ROWS, conv: Any = None) -> np.ndarray:
     """Indices of the cases the table shows: flagged cases first (in case order), then the worst
     landed ones (latest landing first), ``rows`` in all."""
-    flagged = np.flatnonzero(case_flags(res))
-    rest = np.flatnonzero(~case_flags(res))
+    flagged = np.flatnonzero(case_flags(res, conv))
+    rest = np.flatnonzero(~case_flags(res, conv))
     lt = np.where(np.isfinite(res.landing_time[rest]), res.landing_time[rest], np.inf)
     rest = rest[np.argsort(-lt, kind="stable")]
     return np.concatenate([flagged, rest])[:rows].astype(np.int64)
@@ -393,14 +423,16 @@ def shown_cases(res: Any, rows: int = PER_CASE_ROWS) -> np.ndarray:
 def select_cases(res: Any, idx: np.ndarray) -> list[dict[str, Any]]:
     """``case_records`` of the cases ``idx`` only (their case numbers kept)."""
     from lgw.sim.mars.batch import ARRAY_FIELDS, BatchResult
-    from lgw.sim.mars.campaign import case_records
+    from lgw.sim.mars.campaign import case_records, take
 
-    kw = {k: getattr(res, k)[idx] for k in ARRAY_FIELDS}
-    sub = BatchResult(eps=res.eps, dt=res.dt, r0=res.r0[idx], v0=res.v0[idx], m0=res.m0[idx],
-                      info=res.info, **kw)
+    kw = {k: take(res, k, idx) for k in (*ARRAY_FIELDS, "r0", "v0", "m0")}
+    sub = BatchResult(eps=res.eps, dt=res.dt, info=res.info, **kw)
+    sub.info = {k: v for k, v in res.info.items() if k != "refined_dt"}
     recs = case_records(sub)
+    refined = res.info.get("refined_dt", {})
     for rec, i in zip(recs, idx, strict=True):
         rec["case"] = int(i)
+        rec["refined_dt"] = refined.get(int(i))
     return recs
 
 
@@ -410,11 +442,18 @@ def _print_cases(recs: list[dict[str, Any]], total: int, flagged: int, con: Any)
     rows = []
     for rec in recs:
         rl = rec["r_land"]
+        crash = (f"CRASHED at {_fmt(rec['contact_time'], '.3f')} s, "
+                 f"{_fmt(rec['impact_speed'], '.3g')} m/s")
         flags = " ".join(f for f, on in (("NONFINITE", rec["nonfinite"]),
+                                         (crash, rec.get("outcome") == "crashed"),
+                                         ("BELOW-SURFACE", rec.get("below_surface", False)),
                                          ("GROUND", rec["ground_contact"]),
                                          ("DRY", rec["fuel_exhausted"] and not rec["landed"]),
                                          ("STEPLIMIT", rec["step_limit"]),
-                                         ("NOT-LANDED", not rec["landed"]))
+                                         ("NOT-LANDED", not rec["landed"]),
+                                         ("UNCONVERGED", rec.get("converged") is False),
+                                         (f"REFINED dt={rec.get('refined_dt')}",
+                                          rec.get("refined_dt") is not None))
                          if on)
         peak = "/".join(_fmt(None if p is None else p / 1e3, ".1f") for p in rec["peak_thrust"])
         rows.append((str(rec["case"]), "yes" if rec["landed"] else "NO",
@@ -432,10 +471,23 @@ def _print_cases(recs: list[dict[str, Any]], total: int, flagged: int, con: Any)
                   "--out cases.json / cases.csv)", markup=False)
 
 
-def _render(res: Any, summ: dict[str, Any], con: Any) -> None:
+def _render(res: Any, summ: dict[str, Any], con: Any, conv: Any = None) -> None:
     _print_summary(summ, con)
-    _print_cases(select_cases(res, shown_cases(res)), len(res), int(case_flags(res).sum()),
-                 con)
+    recs = select_cases(res, shown_cases(res, conv=conv))
+    if conv is not None:
+        recs = list(with_checks(recs, conv))
+    _print_cases(recs, len(res), int(case_flags(res, conv).sum()), con)
+    if conv is not None:
+        for line in conv.notes():
+            con.print(line, markup=False)
+
+
+def with_checks(records: Any, conv: Any) -> Any:
+    """The case records with the convergence check's verdict per case (``converged``: True or
+    False for a checked case, None for one the check did not fly)."""
+    for rec in records:
+        rec["converged"] = conv.case_ok.get(rec["case"])
+        yield rec
 
 
 def settings_used(res: Any, sim: dict[str, Any], *, method: str, reference: bool,
@@ -462,7 +514,9 @@ def settings_used(res: Any, sim: dict[str, Any], *, method: str, reference: bool
 
 
 CSV_COLS = ["case", "landed", "landing_time", "fuel", "time_saturated", "min_altitude",
-            "ground_contact", "nonfinite", "fuel_exhausted", "step_limit", "steps", "eps"]
+            "ground_contact", "nonfinite", "fuel_exhausted", "step_limit", "steps", "eps",
+            "outcome", "outcome_time", "contact_time", "impact_speed", "below_surface",
+            "refined_dt", "converged"]
 CSV_VEC = ["r0", "v0", "r_land", "v_land", "peak_thrust", "t_s1", "t_s2"]
 
 

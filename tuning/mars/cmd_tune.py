@@ -168,8 +168,8 @@ class CorrectedTuneJob(Job):
         header = (f"lgw tune mars: tf = {req.tf:g} s, thrust_max = {req.thrust_max:g} N "
                   f"({req.limit}), bound = {req.bound}, envelope = {env.name}")
         text = gains_file_text(res.gains, cert, header)
-        return Outcome({"feasible": True, "tuned_gains": res.gains.to_dict(),
-                        "certificate": cert},
+        return Outcome({**res.gains.to_dict(), "feasible": True,
+                        "tuned_gains": res.gains.to_dict(), "certificate": cert},
                        render=lambda con: _render_corrected(con, res, req, env, cert, note),
                        files={"gains.toml": text})
 
@@ -218,7 +218,8 @@ class BoundedTuneJob(Job):
         t0 = time.perf_counter()
         req, env, law, tf = self.request, self.envelope, self.law, self.request.tf
         progress.stage(f"designing the {law} law for {env.name} ({len(env.boxes)} boxes): "
-                       f"proven thrust bound <= {req.margin:g} x {req.thrust_max:g} N")
+                       f"thrust bound ({DB.BOUND_WORD}) <= {req.margin:g} x "
+                       f"{req.thrust_max:g} N")
 
         def sim(bg: Any) -> dict[str, Any]:
             return DB.simulate_check(bg, req, env.boxes, env.m_max,
@@ -231,8 +232,8 @@ class BoundedTuneJob(Job):
             err = [f"infeasible: {res.reason}"]
             if res.gains is not None and np.isfinite(res.T_proven) and self.suggest:
                 tf_ok = math.ceil(res.T_proven * 10) / 10
-                err.append(f"nearest feasible tf: {tf_ok:g} s (proven: the landing-time bound "
-                           f"of the best gains found, with the thrust bound "
+                err.append(f"nearest feasible tf: {tf_ok:g} s ({DB.BOUND_WORD}: the landing-time "
+                           f"bound of the best gains found, with the thrust bound "
                            f"{res.F_proven:.0f} N); rerun with --tf {tf_ok:g}")
             err.append("nothing written")
             return Outcome({"feasible": False, "reason": res.reason}, exit_code=EXIT_INFEASIBLE,
@@ -241,12 +242,15 @@ class BoundedTuneJob(Job):
         header = (f"lgw tune mars --law {law}: tf = {tf:g} s, thrust_max = "
                   f"{req.thrust_max:g} N ({req.limit}), envelope = {env.name}")
         text = bounded_gains_file_text(res.gains, cert, header)
-        return Outcome({"feasible": True, "certificate": DB._plain(cert)},
+        return Outcome({"gains": {"law": law, **res.gains.to_dict()}, "feasible": True,
+                        "certificate": DB._plain(cert)},
                        render=lambda con: _render_bounded(con, res, law),
                        files={"gains.toml": text})
 
 
 def _render_bounded(con: Any, res: Any, law: str) -> None:
+    from lgw.tuning.mars.design_bounded import BOUND_WORD
+
     p = lambda s: con.print(s, markup=False, highlight=False)  # noqa: E731
     if res.sim:
         s = res.sim
@@ -254,13 +258,13 @@ def _render_bounded(con: Any, res: Any, law: str) -> None:
           f"{s['saturated']} saturated, {s['below_ground']} below ground, peak "
           f"{s['peak_thrust']:.0f} N")
     p(f"e1 = {res.gains.e1:g}, e2 = {res.gains.e2:g}, p2 = {res.gains.p2:g}; time "
-      f"{'proven' if res.time_proven else 'checked by simulation'}")
+      f"{BOUND_WORD if res.time_proven else 'checked by simulation'}")
     for i, ax in enumerate(AXES):
         a = res.axes[ax]
         p(f"  {ax}: c1 {res.gains.c1[i]:.4g} delta {res.gains.delta[i]:.4g} "
           f"k1 {res.gains.k1[i]:.4g} k2 {res.gains.k2[i]:.4g}"
           + (f" w0 {res.gains.w0[i]:.4g}" if law == "bounded-sat" else "")
-          + f"  proven T_land {a['T_land']:.1f} s, proven |F| <= {a['F_b']:.0f} N")
+          + f"  T_land {a['T_land']:.1f} s, |F| <= {a['F_b']:.0f} N ({BOUND_WORD})")
     p(f"tuned in {res.timings['total']:.1f} s")
 
 

@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 from lgw.sim.mars.arrival import after_arrival_peaks
+from lgw.sim.mars.parameters import DT_DEFAULT
 from lgw.theory.mars.gains import Gains, load_gains
 from lgw.theory.mars.parameters import G_MARS, M0, M_DRY, R0, THRUST_MAX_AXIS, V0
 from lgw.theory.report import Section
@@ -49,7 +50,9 @@ WHY = ("Ours differ from the paper's because the paper does not state its gains 
        "printed, with s the position, makes r'' = -(B1/2m)|r|^(-1/2) r' - (B2/m) sgn r: r_z "
        "reaches 0 with r_z' = w != 0 (the super-twisting state), so it goes below ground; the "
        "paper's 30 s soft landing with 277.1 kg is not reproducible from the printed law.")
-NOTE = ("fuel: m0 - m at landing or touchdown (closed loop) or at tf (open loop); t_land: the "
+NOTE = ("fuel: m0 - m at landing or at the ground contact (closed loop; a crash ends at the "
+        "located crossing of r_z = 0, its impact speed in the outcome) or at tf (open loop); "
+        "t_land: the "
         "landing time (|r| <= 0.1 m, |v| <= 0.1 m/s); fuel d5: the same closed loop flown by "
         "the adaptive dopri5 (landed runs; where it differs from the RK4 fuel, the fixed "
         "step's chattering in the sliding phase costs the difference); |r|, |v| at landing, "
@@ -145,67 +148,95 @@ def _optimal_rows(dists: list[tuple[str, float]], drag: str, n: int, thrust_max:
     return rows, trajs
 
 
+# The numbers a closed-loop row quotes, with their tolerance for the convergence check
+# (lgw.sim.convergence: 1 % or the quantity's resolution)
+QUOTED = {"fuel": 0.01, "landing_time": 1e-3, "t_end": 1e-3, "pos_error": 1e-3,
+          "vel_error": 1e-3, "peak_thrust_axis": 1.0, "time_saturated": 0.01,
+          "min_altitude": 1e-3, "peak_after_arrival_axis": 1.0}
+
+
+def _flight(b: Any, thrust_max: float | None) -> tuple[dict[str, Any], tuple]:
+    """A recorded one-case run's row numbers (the located outcome: landing, or the ground
+    contact where a crash ends the flight, lgw.sim.results) and its flight (t, r, v, m, F)."""
+    from lgw.sim.results import OUTCOMES
+
+    landed = bool(b.landed[0])
+    tr = b.trajectory
+    keep = np.isfinite(tr["r"][0, :, 0])
+    t, r, v, m, F = (tr["t"][keep], tr["r"][0][keep], tr["v"][0][keep], tr["m"][0][keep],
+                     tr["F"][0][keep])
+    if len(t) and b.t_end[0] > t[-1]:  # the case ended inside its last step: that point too
+        t = np.append(t, b.t_end[0])
+        r, v = np.vstack([r, b.y_end[0, :3]]), np.vstack([v, b.y_end[0, 3:6]])
+        m, F = np.append(m, b.y_end[0, 6]), np.vstack([F, F[-1:]])
+    code, when = b.outcomes()
+    name = OUTCOMES[int(code[0])]
+    text = name if landed else f"{name} at {float(when[0]):.2f} s"
+    if name == "crashed":  # at the located crossing of the ground, with its impact speed
+        text += f", {float(b.impact_speed[0]):.3g} m/s"
+    if b.nonfinite[0] and "nonfinite" not in text:
+        text += ", non-finite"
+    y = b.y_end[0]
+    crashed = name == "crashed"
+    pos = b.r_land[0] if landed else b.contact_point[0] if crashed else y[:3]
+    vel = b.v_land[0] if landed else b.impact_velocity[0] if crashed else y[3:6]
+    nums = {"outcome": text.replace("_", " "), "outcome_name": name, "fuel": float(b.fuel[0]),
+            "landing_time": float(b.landing_time[0]) if landed else math.nan,
+            "t_end": float(b.contact_time[0]) if crashed else float(b.t_end[0]),
+            "pos_error": float(np.linalg.norm(pos)), "vel_error": float(np.linalg.norm(vel)),
+            "peak_thrust_axis": b.peak_thrust[0].tolist(),
+            "peak_thrust": float(np.max(b.peak_thrust[0])),
+            "time_saturated": float(b.time_saturated[0]) if thrust_max is not None
+            else math.nan,
+            "min_altitude": float(b.min_altitude[0]),
+            "peak_after_arrival_axis": after_arrival_peaks(r, v, F)[1].tolist()}
+    return nums, (t, r, v, m, F)
+
+
 def _closed_rows(law: str, label: str, gains: Gains, dists: list[tuple[str, float]], drag: str,
                  paper_fuel: float, thrust_max: float | None) -> tuple[list[dict], list[dict]]:
+    from lgw.sim.convergence import REFINE_HALVINGS, Tol, compare_cases
     from lgw.sim.mars.batch import simulate_batch
-    from lgw.sim.results import OUTCOMES
 
     rows, trajs = [], []
     for dist, amp in dists:
-        b = simulate_batch(R0[None], V0[None], np.array([M0]), gains, law=law, disturbance=dist,
-                           dist_amplitude=amp if dist == "sin" else None, drag=drag,
-                           thrust_limit=thrust_max, record=True)
-        landed = bool(b.landed[0])
-        tr = b.trajectory
-        keep = np.isfinite(tr["r"][0, :, 0])
-        t, r, v, m, F = (tr["t"][keep], tr["r"][0][keep], tr["v"][0][keep], tr["m"][0][keep],
-                         tr["F"][0][keep])
+        kw = dict(law=law, disturbance=dist, dist_amplitude=amp if dist == "sin" else None,
+                  drag=drag, thrust_limit=thrust_max)
+        def fly(h: float, kw: dict[str, Any] = kw) -> Any:
+            return simulate_batch(R0[None], V0[None], np.array([M0]), gains, record=True,
+                                  dt=h, **kw)
+
+        # convergence (lgw.sim.convergence): the same flight at dt/2, every quoted number; an
+        # outcome that changes with the step is refined (dt/4, dt/8, ...) until two successive
+        # steps agree, and the row is that flight, marked refined
+        h = DT_DEFAULT
+        b = fly(h)
+        nums, flight = _flight(b, thrust_max)
+        half = fly(h / 2)
+        nh = _flight(half, thrust_max)[0]
+        for _ in range(REFINE_HALVINGS - 1):
+            if nh["outcome_name"] == nums["outcome_name"]:
+                break
+            h /= 2
+            b, nums, flight = half, nh, _flight(half, thrust_max)[1]
+            half = fly(h / 2)
+            nh = _flight(half, thrust_max)[0]
+        t, r, v, m, F = flight
         row = {"method": law, "label": label, "disturbance": dist, "dist_amplitude": amp,
-               "landed": landed, "paper_fuel": paper_fuel if dist == "none" else math.nan}
-        below = np.flatnonzero(r[:, 2] < 0.0)
-        if not landed and below.size and below[0] > 0:
-            # crashed: the flight ends at touchdown (linear between the RK4 nodes), as for the
-            # open-loop replay; flying on below ground would be meaningless
-            k = int(below[0])
-            th = r[k - 1, 2] / (r[k - 1, 2] - r[k, 2])
-            at = {name: x[k - 1] + th * (x[k] - x[k - 1]) for name, x in
-                  (("t", t), ("r", r), ("v", v), ("m", m))}
-            peak = np.abs(F[:k + 1]).max(axis=0)
-            sat = math.nan if thrust_max is None else float(
-                np.diff(t[:k + 1])[np.abs(F[:k]).max(axis=1) >= thrust_max * (1 - 1e-12)].sum())
-            row.update(outcome=f"crashed at {at['t']:.2f} s", fuel=float(M0 - at["m"]),
-                       landing_time=math.nan, t_end=float(at["t"]),
-                       pos_error=float(np.linalg.norm(at["r"])),
-                       vel_error=float(np.linalg.norm(at["v"])),
-                       peak_thrust_axis=peak.tolist(), peak_thrust=float(peak.max()),
-                       time_saturated=sat, min_altitude=0.0)
-            t, r, v, m, F = t[:k + 1], r[:k + 1], v[:k + 1], m[:k + 1], F[:k + 1]
-        else:
-            y = b.y_end[0]
-            code, when = b.outcomes()
-            outcome = OUTCOMES[int(code[0])]
-            if outcome != "landed":
-                outcome = f"{outcome} at {float(when[0]):.2f} s"
-            if b.nonfinite[0] and "nonfinite" not in outcome:
-                outcome += ", non-finite"
-            row.update(
-                outcome=outcome.replace("_", " "),
-                fuel=float(b.fuel[0]),
-                landing_time=float(b.landing_time[0]) if landed else math.nan,
-                t_end=float(b.t_end[0]),
-                pos_error=float(np.linalg.norm(b.r_land[0] if landed else y[:3])),
-                vel_error=float(np.linalg.norm(b.v_land[0] if landed else y[3:6])),
-                peak_thrust_axis=b.peak_thrust[0].tolist(),
-                peak_thrust=float(np.max(b.peak_thrust[0])),
-                time_saturated=float(b.time_saturated[0]) if thrust_max is not None
-                else math.nan,
-                min_altitude=float(b.min_altitude[0]))
-        row["peak_after_arrival_axis"] = after_arrival_peaks(r, v, F)[1].tolist()
+               "landed": bool(b.landed[0]),
+               "paper_fuel": paper_fuel if dist == "none" else math.nan, **nums,
+               "refined_dt": h if h != DT_DEFAULT else None}
+        if h != DT_DEFAULT:
+            row["outcome"] += f" (refined, dt {h:g} s)"
+        conv = compare_cases([nums], [nh], {k: Tol(atol=a) for k, a in QUOTED.items()},
+                             how="step halving", outcome_key="outcome_name",
+                             base_label=f"RK4 dt = {h:g} s", check_label=f"RK4 dt = {h / 2:g} s")
+        row["converged"] = conv.converged
+        row["convergence"] = conv.to_dict()
+        row["convergence_flags"] = conv.flags(f"{label}, a_p {_amp_cell(row)}")
         # the same flight by the adaptive dopri5 (error-controlled, steps through the sliding
         # phase where the fixed RK4 step chatters): how much of the fuel is the integrator's
-        d5 = simulate_batch(R0[None], V0[None], np.array([M0]), gains, law=law,
-                            disturbance=dist, dist_amplitude=amp if dist == "sin" else None,
-                            drag=drag, thrust_limit=thrust_max, method="dopri5")
+        d5 = simulate_batch(R0[None], V0[None], np.array([M0]), gains, method="dopri5", **kw)
         d5_landed = bool(d5.landed[0])
         row["dopri5"] = {"landed": d5_landed,
                          "landing_time": float(d5.landing_time[0]) if d5_landed else math.nan,
@@ -283,10 +314,18 @@ def run_comparison(gains: Gains, tuned: list[tuple[str, Gains]], *,
                                 thrust_max)
             rows += r
             trajs += t
+    flags = [f for r in rows for f in r.get("convergence_flags", [])]
+    checked = [r for r in rows if "converged" in r]
     report = {"plant": "mars", "case": "seed 000 Table I", "optimal_tf": OPTIMAL_TF,
               "amplitudes": [float(a) for a in amplitudes], "drag": drag,
               "thrust_max_axis": float(thrust_max), "laws": names, "rows": rows, "note": NOTE,
-              "why": WHY}
+              "why": WHY, "convergence_flags": flags,
+              "convergence": (f"every closed-loop row flown again at dt/2 (RK4 "
+                              f"{DT_DEFAULT:g} s against {DT_DEFAULT / 2:g} s), each quoted "
+                              f"number within 1 % or its resolution: "
+                              f"{sum(r['converged'] for r in checked)} of {len(checked)} rows "
+                              "converged" + ("; UNCONVERGED: " + "; ".join(flags)
+                                             if flags else ""))}
     return report, trajs
 
 
@@ -411,7 +450,8 @@ def report_section(report: dict[str, Any], image: str | None) -> Section:
              f"disturbance 0 or a_p,i = {amps}.  Produced by `lgw compare mars` (the same "
              "function).")
     return Section(title="Seed 000 Part 1 comparison (simulated)",
-                   paragraphs=(intro, report["note"], report["why"]),
+                   paragraphs=(intro, report["note"], report["why"],
+                               report.get("convergence", "")),
                    columns=tuple(name for name, _ in COLUMNS),
                    rows=tuple(tuple(c.strip() for c in row) for row in table_cells(report)),
                    image=image)

@@ -336,8 +336,7 @@ def simulation_figures(gains: Gains, res: BatchResult, opts: dict[str, Any],
     portrait.  ``opts`` are the simulate_batch keywords the run used (RK4 only)."""
     r0, v0, m0 = states
     n = min(len(res), n_overlay)
-    kw = {k: v for k, v in opts.items() if k not in ("method", "rtol", "atol", "max_step",
-                                                     "kernel")}  # recorded: scalar RK4
+    kw = {k: v for k, v in opts.items() if k not in ("method", "rtol", "atol", "max_step")}
     rec = simulate_batch(r0[:n], v0[:n], m0[:n], gains, record=True, **kw)
     what = (f"{opts.get('law', 'corrected')} law, disturbance {opts.get('disturbance')!r}, "
             f"drag {opts.get('drag')!r}, RK4 dt = {rec.dt:g} s")

@@ -1,6 +1,6 @@
 """Seed 000 (Mars powered descent, fixed-time multiple sliding surfaces) as a ``System``."""
 
-from lgw.tuning.system import Legacy, NotApplicable, System, Verb
+from lgw.tuning.system import System, Verb
 
 _M = "lgw.tuning.mars"
 
@@ -10,6 +10,7 @@ SYSTEM = System(
     summary="Mars powered descent (fixed-time MSS)",
     gains=f"{_M}.gainset", claims="lgw.theory.mars.claims:all_claims",
     interop="lgw.sim.mars.interop",
+    kernels="lgw.sim.mars.batch:warmup_kernels",
     verbs={
         "bounds": Verb(f"{_M}.cmd_bounds", "every settling-time, neighbourhood and "
                          "landing-time bound for a gain set"),
@@ -21,10 +22,11 @@ SYSTEM = System(
                        "limit, with a certificate"),
         "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
                          "HTML) with every claim's verdict"),
-        "compare": Legacy(f"{_M}.cmd_compare", "the paper's Part 1 comparison on Table I "
-                          "(table, JSON, figure)"),
-        "optimal": Legacy(f"{_M}.cmd_optimal", "the lossless-convexification fuel-optimal "
-                          "baseline"),
-        "warmup": NotApplicable("pending"),
+        "compare": Verb(f"{_M}.cmd_compare", "the paper's Part 1 comparison on Table I "
+                        "(table, JSON, figure)"),
+        "optimal": Verb(f"{_M}.cmd_optimal", "the lossless-convexification fuel-optimal "
+                        "baseline"),
+        "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
+                       "one step"),
     },
 )

@@ -1,0 +1,108 @@
+"""``lgw warmup`` and the kernels it builds: after the session's warm-up (tests/conftest.py)
+nothing is compiled again, and each kernel has one specialisation whatever the options of a
+run (a second one would be a second cold build of the whole integrator)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from lgw.sim.kernel_cache import cache_dir
+
+from tests.test_cli_conventions import run_lgw
+
+
+@pytest.mark.parametrize("system", ["mars", "lunar", "eros"])
+def test_a_second_warmup_compiles_nothing(system) -> None:
+    r = run_lgw(["warmup", system, "--json"])
+    assert r.code == 0, r.stderr
+    doc = json.loads(r.stdout)
+    assert doc["command"] == f"warmup {system}" and doc["cache"] == str(cache_dir())
+    assert doc["kernels"] and all(k["kernel"].split("/")[0] == system for k in doc["kernels"])
+    assert not [k for k in doc["kernels"] if k["compiled"]], doc
+
+
+def test_warmup_without_a_system_does_every_system() -> None:
+    r = run_lgw(["warmup"])
+    assert r.code == 0, r.stderr
+    for system in ("mars", "lunar", "eros"):
+        assert f"{system} kernels" in r.stdout
+    assert "compiled" not in r.stdout.replace("kernels", "")  # all loaded from the cache
+
+
+def _one_specialisation(*dispatchers) -> None:
+    for d in dispatchers:
+        assert len(d.signatures) == 1, (d, d.signatures)
+
+
+def test_mars_kernels_have_one_specialisation() -> None:
+    from lgw.sim.mars import kernel as K
+    from lgw.sim.mars.batch import simulate_batch
+    from lgw.sim.mars.campaign import table3_states
+    from lgw.theory.mars.gains import default_gains
+
+    g = default_gains()
+    r0, v0, m0 = table3_states(3, seed=0)
+    runs = [{}, {"method": "dopri5"}, {"record": True, "t_max": 2.0},
+            {"thrust_limit": 5e4, "limit": "norm", "disturbance": "sin"},
+            {"disturbance": "random", "stop": "t_max", "t_max": 3.0, "parallel": False},
+            {"disturbance": "worst", "drag": "printed", "guidance_drag": "none",
+             "blowup_accel": np.inf, "t_max": 3.0}]
+    for law in ("corrected", "super-twisting"):
+        for kw in runs:
+            simulate_batch(r0, v0, m0, g, law=law, **{"t_max": 5.0, **kw})
+        _one_specialisation(K.kernel_module(law).kernel)
+
+
+def test_lunar_kernel_has_one_specialisation() -> None:
+    from dataclasses import replace
+
+    from lgw.sim.lunar import kernel as K
+    from lgw.sim.lunar.batch import simulate
+    from lgw.sim.lunar.closed_loop import RunOptions
+    from lgw.sim.lunar.scenario import section5_case
+
+    base = RunOptions(t_end=1.0)
+    for opts, kw in ((base, {}), (base, {"method": "dopri5"}),
+                     (replace(base, failure="step", thrust_pointing="ideal"),
+                      {"record": False, "parallel": False}),
+                     (replace(base, sat_reading="nominal", failure="none"), {})):
+        ctx, X0 = section5_case(opts=opts, n=2)
+        simulate(ctx, X0, **kw)
+    # a Monte Carlo campaign's per-case failure levels and times (lgw.sim.lunar.campaign)
+    simulate(ctx, X0, record=False, failures=(np.array([0.5, 0.7]), np.array([0.2, 0.4])))
+    _one_specialisation(K.kernel_module().kernel)
+
+
+def test_eros_kernel_has_one_specialisation() -> None:
+    from lgw.sim.eros import kernel as K
+    from lgw.sim.eros.batch import SimOptions, simulate_kernel
+    from lgw.sim.eros.campaign import offsets
+    from lgw.theory.eros.gains import default_gains
+
+    e0, ed0, ph = offsets(3, seed=0)
+    for opts in (SimOptions(t_final=0.1), SimOptions(t_final=0.1, method="dopri5"),
+                 SimOptions(t_final=0.1, law="fuzzy", switch="tanh", disturbance="none",
+                            gravity="none"),
+                 SimOptions(t_final=0.1, law="pdsmc", disturbance="unknown", n_sub=3)):
+        simulate_kernel(e0, ed0, default_gains(), opts, ph, parallel=opts.law != "pdsmc")
+    _one_specialisation(K.kernel_module().kernel)
+
+
+def test_eros_descent_kernel_has_one_specialisation() -> None:
+    from dataclasses import replace
+
+    from lgw.sim.eros import descent_kernel as K
+    from lgw.sim.eros.descent import DescentOptions, Navigation, descent_gains, simulate_descent
+
+    base = DescentOptions(t0=0.0, t_max=2.0)
+    e0 = np.array([[1.0, -2.0, 0.5], [0.0, 0.0, 0.0]])
+    for opts, kw in ((base, {}), (replace(base, method="dopri5", gravity="two-point"), {}),
+                     (replace(base, law="pdsmc", switch="tanh", gravity="polyhedron-exact",
+                              controller_gravity="none", nav=Navigation.typical(3), stride=0),
+                      {"parallel": False, "srp": [0.0, 1e-6]}),
+                     (replace(base, gravity="none", controller_gravity="polyhedron"),
+                      {"case_phase": 0.3, "nav_ids": [5, 9]})):
+        simulate_descent(e0, np.zeros((2, 3)), descent_gains(), opts, **kw)
+    _one_specialisation(K.kernel_module().kernel)
