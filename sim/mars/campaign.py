@@ -304,8 +304,9 @@ class SpilledResult:
     """A campaign's per-case results on disk, one raw file per array (``SPILL_CHUNK`` cases
     are in memory at a time while it is flown), in a temporary folder removed with the object.
 
-    It reads as a ``BatchResult``: every per-case array is an attribute (read from disk at each
-    access: a summary reads one or a few whole columns at a time, never all of them), ``len``,
+    It reads as a ``BatchResult``: every per-case array is an attribute (the file mapped at
+    each access, copy on write: a summary reads one or a few whole columns at a time, never all
+    of them; code that takes case i of an array reads its page, not the column), ``len``,
     ``outcomes()``, ``crashed``, ``impact_speed``, ``eps``, ``dt``, ``info``, ``with_rows``
     (in place: a copy would double the campaign on disk); ``rows(sl)`` and ``take(idx)`` are
     the ``BatchResult`` of some cases.  So a million cases take a few columns of memory (8-24
@@ -354,7 +355,11 @@ class SpilledResult:
     def __getattr__(self, name: str) -> np.ndarray:
         if name.startswith("_") or name not in self.__dict__.get("_layout", {}):
             raise AttributeError(name)
-        return self.column(name)
+        if not self._n:
+            return self.column(name)
+        # mapped, copy on write: a whole-column operation reads the column, an element or a
+        # row (res.t_s2[i]: a view) reads its page only and does not hold the column in memory
+        return self._map(name, "c")
 
     def rows(self, sl: slice) -> BatchResult:
         """The cases ``sl`` as a ``BatchResult`` (in memory)."""
