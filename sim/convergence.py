@@ -34,20 +34,48 @@ REFINE_HALVINGS = 5  # dt/2 ... dt/32 at most
 DOPRI_TIGHTEN = 10.0  # dopri5 is checked at rtol/10, atol/10
 
 
+RELATIVE_TO = ("larger", "check")
+
+
 @dataclass(frozen=True)
 class Tol:
-    """|a - b| <= atol + rtol max(|a|, |b|); atol in the quantity's unit (the resolution below
-    which a difference means nothing, e.g. 1e-3 s on a time)."""
+    """|a - b| <= atol + rtol scale(a, b); atol in the quantity's unit (the resolution below
+    which a difference means nothing, e.g. 1e-3 s on a time).  scale(a, b) = max(|a|, |b|)
+    (``relative_to`` "larger", the default) or |b|, the finer run's value (``relative_to``
+    "check"), and at least ``floor``, the quantity's own scale below which a relative
+    difference means nothing (rtol x floor is then the absolute tolerance of a number near
+    zero).  ``difference(a, b)`` = |a - b| / scale(a, b), the number a check prints."""
 
     rtol: float = RTOL
     atol: float = 0.0
+    floor: float = 0.0
+    relative_to: str = "larger"
+
+    def __post_init__(self) -> None:
+        if self.relative_to not in RELATIVE_TO:
+            raise ValueError(f"relative_to must be one of {RELATIVE_TO}")
+
+    def scale(self, a: float, b: float) -> float:
+        ref = max(abs(a), abs(b)) if self.relative_to == "larger" else abs(b)
+        return max(ref, self.floor)
+
+    def difference(self, a: float, b: float) -> float:
+        """|a - b| / scale(a, b); 0 when both are the same non-finite value (or both NaN), inf
+        when only one is finite or the scale is 0 with a difference."""
+        if (math.isnan(a) and math.isnan(b)) or (not math.isfinite(a) and a == b):
+            return 0.0
+        if not (math.isfinite(a) and math.isfinite(b)):
+            return math.inf
+        d = abs(a - b)
+        sc = self.scale(a, b)
+        return d / sc if sc > 0 else (0.0 if d == 0 else math.inf)
 
     def ok(self, a: float, b: float) -> bool:
         if math.isnan(a) and math.isnan(b):  # undefined in both (e.g. no landing time)
             return True
         if not (math.isfinite(a) and math.isfinite(b)):
             return a == b
-        return abs(a - b) <= self.atol + self.rtol * max(abs(a), abs(b))
+        return abs(a - b) <= self.atol + self.rtol * self.scale(a, b)
 
 
 def refinement(method: str, dt: float | None = None, rtol: float | None = None,

@@ -32,10 +32,14 @@ os.environ.setdefault("LGW_PROGRESS", "never")
 WARMUP_GROUPS = (("mars",), ("lunar", "eros"))
 
 
-@pytest.fixture(scope="session", autouse=True)
-def warm_kernels() -> None:
-    """``lgw warmup`` for every system before the first test (module docstring)."""
-    if os.environ.get("LGW_TEST_WARMUP", "1") == "0":
+@pytest.hookimpl(tryfirst=True)
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """``lgw warmup`` for every system before the first test (module docstring).  Under
+    pytest-xdist it runs once, in the controller, before the workers start (its own
+    sessionstart is trylast): the workers then only load the kernels."""
+    config = session.config
+    if (os.environ.get("LGW_TEST_WARMUP", "1") == "0" or hasattr(config, "workerinput")
+            or config.option.collectonly):
         return
     env = dict(os.environ, LGW_COMPILE_NOTICE="0", LGW_PROGRESS="never")
     groups = WARMUP_GROUPS if (os.cpu_count() or 1) > 1 else (sum(WARMUP_GROUPS, ()),)

@@ -30,6 +30,14 @@ excluded with that reason, like the cases no integrator could carry.  The verdic
 Every failure names what was observed against which bound, at which state, axis and gains, and
 prints one public command, ``lgw verify SYSTEM --claim C --witness STATE ...``, that flies that
 state alone through the same check and exits 1 again.
+
+Two kinds of claim.  A "campaign" claim is judged per initial state (above).  A "computed"
+claim is judged once, by the system's ``compute`` (e.g. a certificate's promise re-derived by
+its proof, or re-flown on the certificate's own campaign): a ``Computed`` record with the
+observed value, the bound, its evidence word ("proven": the proof re-done; "sampled": a
+campaign of ``cases`` cases, which counts toward ``--min-cases``), a violation's re-check by an
+independent route, and the flags that make ``lgw verify SYSTEM --claim C ...`` reproduce it.
+Every row of the table and every claim of the JSON document carries its evidence word.
 """
 
 from __future__ import annotations
@@ -74,6 +82,7 @@ class Claim:
     unit: str
     uninformative: str
     tolerance: str = ""
+    kind: str = "campaign"  # "campaign": judged per state by ``judge``; "computed": ``compute``
 
 
 @dataclass(frozen=True)
@@ -324,6 +333,42 @@ class Judged:
     notes: np.ndarray | None = None
 
 
+@dataclass
+class Computed:
+    """A computed claim's record (module docstring): ``observed`` against ``bound`` (margin
+    (bound - observed)/bound, over ``reference`` where the bound is 0), ``evidence`` "proven"
+    or "sampled" with ``detail`` (how, over what), ``cases`` the sample size (0 for a proof),
+    ``confirmed`` whether a violation is confirmed by ``recheck`` (an independent route; a
+    proof re-done is its own confirmation), ``flags`` the extra arguments of the reproducing
+    command, ``case`` the failing case's description (sampled evidence)."""
+
+    observed: float
+    bound: float
+    evidence: str
+    detail: str
+    cases: int = 0
+    confirmed: bool = True
+    recheck: str = ""
+    flags: tuple[str, ...] = ()
+    case: str = ""
+    reference: float | None = None
+
+    def margin(self) -> float:
+        ref = None if self.reference is None else np.array(self.reference)
+        return float(margins(np.array(self.observed), np.array(self.bound), ref))
+
+    def to_dict(self) -> dict[str, Any]:
+        def num(x: float) -> float | None:
+            return float(x) if x is not None and math.isfinite(x) else None
+
+        return {"observed": num(self.observed), "bound": num(self.bound),
+                "observed_infinite": bool(self.observed is not None
+                                          and math.isinf(self.observed)),
+                "margin": num(self.margin()), "evidence": self.evidence, "detail": self.detail,
+                "cases": self.cases, "confirmed": self.confirmed, "recheck": self.recheck,
+                "case": self.case}
+
+
 def capped(bound: np.ndarray, cap: float | None) -> np.ndarray:
     return bound if cap is None else np.minimum(bound, cap)
 
@@ -454,6 +499,8 @@ class ClaimResult:
     reproduction: str | None = None
     message: str = ""
     points: dict[str, Any] = field(default_factory=dict, repr=False)
+    evidence: str = "sampled"  # how this row is known: "sampled" (a campaign), "proven"
+    check: dict[str, Any] | None = None  # a computed claim's record (Computed.to_dict)
 
     @property
     def n_excluded(self) -> int:
@@ -489,7 +536,8 @@ class ClaimResult:
                 "min_cases": self.min_cases, "max_excluded": self.max_excluded,
                 "margin": self.margin, "worst": self.worst, "scale": self.scale,
                 "promise": self.promise, "search": self.search, "witness": self.witness,
-                "reproduction": self.reproduction, "message": self.message}
+                "reproduction": self.reproduction, "message": self.message,
+                "evidence": self.evidence, "check": self.check}
 
 
 def decide(r: ClaimResult, na: str | None, found: dict[str, Any] | None,
@@ -643,6 +691,8 @@ def plan(opts: VerifyOptions, system: Any) -> VerifyJob:
     gains = system.gains_module().resolve(opts.gains)
     shown = str(opts.gains) if opts.gains is not None else "the built-in gain set"
     cert = None if opts.gains is None else certificate(load_toml(opts.gains, "--gains"), shown)
+    if opts.gains is None and hasattr(spec, "builtin_gains"):  # e.g. the eros descent's own
+        gains = spec.builtin_gains(opts.settings()) or gains
     promises = spec.promises(gains, cert, shown)
     na = dict(spec.not_applicable(gains, cert, opts.settings()))
     if opts.domain == "whole":
@@ -652,14 +702,17 @@ def plan(opts: VerifyOptions, system: Any) -> VerifyJob:
     else:
         env = spec.default_envelope(gains, cert)
     witness = getattr(opts, "witness", None)
-    chosen = set(getattr(opts, "claim", ()) or opts.CLAIMS)
+    # a system may offer a subset by its settings (eros: the tracking or the descent claims)
+    offered = spec.claims_for(opts.settings()) if hasattr(spec, "claims_for") else opts.CLAIMS
+    chosen = set(getattr(opts, "claim", ()) or offered)
     claims = tuple(c for c in opts.CLAIMS if c in chosen)
     examples = opts.examples or opts.PROFILES[opts.profile]
     flags = []
     for f in opts.SETTINGS:
         if opts.given(f):
             flag = next(o.flag for fl, o in _fields(opts) if fl.name == f)
-            flags.append(f"{flag} {getattr(opts, f)!r}")
+            val = getattr(opts, f)
+            flags.append(f"{flag} {val!r}" if isinstance(val, float) else f"{flag} {val}")
     return VerifyJob(system=system.name, spec=opts.SPEC, gains=gains,
                      gains_path=None if opts.gains is None else str(opts.gains),
                      settings=opts.settings(), certificate=cert, claims=claims,
@@ -738,7 +791,10 @@ class VerifyJob(Job):
         """Every selected claim's ``ClaimResult`` and the seconds each phase took."""
         spec = importlib.import_module(self.spec)
         claims: Mapping[str, Claim] = spec.CLAIMS
-        active = [c for c in self.claims if c not in self.not_applicable]
+        active = [c for c in self.claims if c not in self.not_applicable
+                  and claims[c].kind == "campaign"]
+        computed = [c for c in self.claims if c not in self.not_applicable
+                    and claims[c].kind == "computed"]
         ctx = Context(self.gains, self.settings, {c: self.factor(c) for c in claims},
                       self.seed or 0, certificate=self.certificate,
                       caps={c: v for c in claims if (v := self.cap(c)) is not None})
@@ -778,8 +834,17 @@ class VerifyJob(Job):
                 searches[c] = spec.search(ctx, c, None if self.domain == "whole"
                                           else self.envelope, self.profile)
                 timings[f"search {c}"] = round(time.perf_counter() - t0, 2)
+        records: dict[str, Computed] = {}
+        if computed:
+            t0 = time.perf_counter()
+            progress.stage(f"computing {', '.join(computed)}")
+            records = dict(spec.compute(ctx, computed, progress))
+            timings["compute"] = round(time.perf_counter() - t0, 2)
         results = []
         for c in self.claims:
+            if claims[c].kind == "computed":
+                results.append(self._computed(spec, claims[c], records.get(c)))
+                continue
             t0 = time.perf_counter()
             results.append(self._result(spec, ctx, claims[c], tallies.get(c), found.get(c),
                                         searches.get(c, []), progress))
@@ -864,9 +929,62 @@ class VerifyJob(Job):
                 "disturbance a_p = +a_max sgn(s2)): the reduced-loop search and its re-check "
                 "found it")
         decide(r, na, found, bool(refuted) and na is None)
+        if r.verdict == "not-applicable":
+            r.evidence = ""
         if r.verdict == "inconclusive" and found is not None and not found.get("confirmed"):
             r.message = r.message or r.why
         return r
+
+    def _computed(self, spec: Any, claim: Claim, comp: Computed | None) -> ClaimResult:
+        """A computed claim's ClaimResult from its record (module docstring)."""
+        from dataclasses import replace
+
+        na = self.not_applicable.get(claim.name)
+        r = ClaimResult(claim.name, claim.equation, claim.observed, claim.bound, claim.unit,
+                        "inconclusive", min_cases=self.min_cases,
+                        max_excluded=self.max_excluded, scale=self.factor(claim.name),
+                        evidence="")
+        if na is not None or comp is None:
+            decide(r, na or "the system computed nothing for it", None, False)
+            return r
+        if r.scale != 1.0:
+            comp = replace(comp, bound=comp.bound * r.scale)
+        m = comp.margin()
+        r.evidence, r.check = comp.evidence, comp.to_dict()
+        r.total = r.informative = comp.cases if comp.evidence == "sampled" else 1
+        r.margin = None if math.isnan(m) else m
+        r.worst = {"observed": r.check["observed"], "bound": r.check["bound"], "margin": r.margin,
+                   "case": comp.case}
+        r.reproduction = self._reproduction(claim.name, None, {}, comp.flags)
+        if math.isnan(m):
+            r.why = NONFINITE
+        elif m < 0:
+            r.verdict = "violated" if comp.confirmed else "inconclusive"
+            r.why = (f"observed {_g(comp.observed, '.6g')}{_u(claim)} > bound "
+                     f"{_g(comp.bound, '.6g')}{_u(claim)} (margin {m:.4g}), {comp.evidence}"
+                     + (f"; re-checked: {comp.recheck}" if comp.recheck else "")
+                     + ("" if comp.confirmed else "; the re-check does not confirm it"))
+            r.message = self._computed_message(spec, claim, comp, r, m)
+        elif comp.evidence == "sampled" and comp.cases < self.min_cases:
+            r.why = f"{comp.cases} cases < --min-cases {self.min_cases}"
+        else:
+            r.verdict, r.why = "holds", ""
+        return r
+
+    def _computed_message(self, spec: Any, claim: Claim, comp: Computed, r: ClaimResult,
+                          m: float) -> str:
+        sc = f" x {r.scale:g} (--scale)" if r.scale != 1.0 else ""
+        lines = [f"{claim.name} {claim.equation}: {r.why}",
+                 f"  observed: {claim.observed} = {_g(comp.observed, '.6g')}{_u(claim)}",
+                 f"  bound: {claim.bound}{sc} = {_g(comp.bound, '.6g')}{_u(claim)}; margin "
+                 f"(bound - observed)/bound = {m:.4g}",
+                 f"  evidence: {comp.evidence}: {comp.detail}"]
+        if comp.case:
+            lines.append(f"  case: {comp.case}")
+        lines.append(f"  gains: {self.gains_path or 'the built-in gain set'} ("
+                     f"{spec.gains_text(self.gains, None)})")
+        lines.append(f"  reproduce: {r.reproduction}")
+        return "\n".join(lines)
 
     def _fly(self, spec: Any, ctx: Context, claim: Claim, row: Sequence[float],
              extra: Mapping[str, Any], axis: str | None = None) -> dict[str, Any] | None:
@@ -915,19 +1033,26 @@ class VerifyJob(Job):
                     break
         return best
 
-    def _reproduction(self, claim: str, row: Sequence[float], extra: Mapping[str, Any]) -> str:
+    def _reproduction(self, claim: str, row: Sequence[float] | None,
+                      extra: Mapping[str, Any], flags: Sequence[str] = ()) -> str:
+        """``lgw verify SYSTEM [--gains F] --claim C`` with the witness state (campaign
+        claims; None: a computed claim), the scale, the settings given and ``flags``."""
         spec = importlib.import_module(self.spec)
         parts = ["lgw", "verify", self.system]
         if self.gains_path is not None:
             parts += ["--gains", self.gains_path]
-        parts += ["--claim", claim, "--witness", format_witness(row, extra, spec.VARIABLES)]
+        parts += ["--claim", claim]
+        if row is not None:
+            parts += ["--witness", format_witness(row, extra, spec.VARIABLES)]
+        parts += list(flags)
         for name, f in self.scale.items():
             if name == claim:
                 parts += ["--scale", f"{name}={f!r}"]
         cmd = " ".join(shlex.quote(p) for p in parts)
         for fl in self.repro_flags:
             flag, _, val = fl.partition(" ")
-            cmd += f" {flag} {shlex.quote(val)}"
+            if flag not in flags:  # a computed claim's flags give their own value
+                cmd += f" {flag} {shlex.quote(val)}"
         return cmd
 
     def _message(self, spec: Any, claim: Claim, rec: Mapping[str, Any], r: ClaimResult,
@@ -1004,19 +1129,20 @@ class VerifyJob(Job):
             con.print(s, markup=False, highlight=False, soft_wrap=True)
 
         with_search = any(r.search for r in results)
-        cols = ["claim", "eq.", "informative", "excluded", "total", "worst margin"]
+        cols = ["claim", "eq.", "evidence", "informative", "excluded", "total", "worst margin"]
         cols += ["search margin"] if with_search else []
         cols += ["verdict"]
         rows, styles = [], []
         for r in results:
-            row = [r.claim, r.equation, str(r.informative), str(r.n_excluded), str(r.total),
-                   _g(r.margin)]
+            row = [r.claim, r.equation, r.evidence or "-", str(r.informative),
+                   str(r.n_excluded), str(r.total), _g(r.margin)]
             row += [_g(r.search_margin)] if with_search else []
             rows.append(row + [r.verdict])
             styles.append({"holds": None, "violated": "red", "not-applicable": "dim"}.get(
                 r.verdict, "yellow"))
         result_table(con, self._title(), cols, rows, styles=styles)
-        if self.witness is None:
+        if self.witness is None and any(r.check is None and r.verdict != "not-applicable"
+                                        for r in results):  # a campaign flew the envelope
             p(f"envelope: {self.envelope.name}: {self.envelope.describe()}")
         p(f"margin = (bound - observed)/bound, < 0 violates; holds needs >= {self.min_cases} "
           f"informative cases (a case that can violate the claim) and at most "
@@ -1038,6 +1164,8 @@ class VerifyJob(Job):
                                                           "none refuted"))
             if r.promise:
                 p(f"{r.claim}: checked against the certificate's promise {r.promise['text']}")
+            if r.check is not None and not r.message:
+                p(f"{r.claim}: {r.evidence}: {r.check['detail']}")
             if r.message:
                 p(r.message)
             elif r.verdict == "not-applicable":
@@ -1101,6 +1229,22 @@ def run_checks(system: str, gains: Any = None, **options: Any) -> list[ClaimResu
     from dataclasses import replace
 
     from lgw.tuning.progress import Silent
+
+    sysobj, mod, opts = _options(system, gains, options)
+    obj = None if gains is None or isinstance(gains, str | Path) else gains
+    job = mod.plan(opts, sysobj)
+    if obj is not None:  # a gain set given as an object: no file, no certificate
+        spec = importlib.import_module(job.spec)
+        env = job.envelope if opts.domain == "whole" or opts.envelope is not None else \
+            spec.default_envelope(obj, None)
+        job = replace(job, gains=obj, not_applicable=dict(spec.not_applicable(
+            obj, None, opts.settings())), promises=spec.promises(obj, None, "<gains object>"),
+            envelope=env)
+    return job.check(Silent())[0]
+
+
+def _options(system: str, gains: Any, options: Mapping[str, Any]) -> tuple[Any, Any, Any]:
+    """(the system, its verify module, its Options) from Python values (``run_checks``)."""
     from lgw.tuning.system import get_system
 
     sysobj = get_system(system)
@@ -1119,12 +1263,17 @@ def run_checks(system: str, gains: Any = None, **options: Any) -> list[ClaimResu
         opts = mod.Options(gains=path, **kw)
     except TypeError as e:
         raise ParameterError(f"lgw verify {system} option", sorted(kw), str(e)) from None
-    job = mod.plan(opts, sysobj)
-    if obj is not None:  # a gain set given as an object: no file, no certificate
-        spec = importlib.import_module(job.spec)
-        env = job.envelope if opts.domain == "whole" or opts.envelope is not None else \
-            spec.default_envelope(obj, None)
-        job = replace(job, gains=obj, not_applicable=dict(spec.not_applicable(
-            obj, None, opts.settings())), promises=spec.promises(obj, None, "<gains object>"),
-            envelope=env)
-    return job.check(Silent())[0]
+    return sysobj, mod, opts
+
+
+def offered_claims(system: str, **options: Any) -> list[str]:
+    """The claims ``run_checks(system, **options)`` returns, in order: those ``claim`` names,
+    else the system's default selection for these options (``claims_for``: e.g. the eros
+    scenario's)."""
+    _, mod, opts = _options(system, None, options)
+    spec = importlib.import_module(opts.SPEC)
+    if getattr(opts, "claim", ()):
+        chosen = set(opts.claim)
+        return [c for c in opts.CLAIMS if c in chosen]
+    offered = spec.claims_for(opts.settings()) if hasattr(spec, "claims_for") else opts.CLAIMS
+    return [c for c in opts.CLAIMS if c in set(offered)]

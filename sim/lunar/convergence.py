@@ -16,16 +16,23 @@ the loop slides on z2 = 0 after the initial transient and a fixed step chatters 
 error of the final numbers falls roughly like sqrt(dt), and some quantities (the peak of the
 chattering command, the saturated time of a chattering thrust) converge slowly or not at all.
 The step ``lgw.sim.lunar.parameters.DT`` is chosen so that the Section 5 numbers pass.
+
+One mechanism for every system: each quantity's tolerance is a ``lgw.sim.convergence.Tol``
+(1 % of the refined value, at least of the floor) and every comparison is the shared
+``compare_cases`` record, which decides ``converged``; what is lunar's own is the list of
+quoted quantities, their floors, and the dt/4 rule of a single run (dt/2 in campaigns).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
-RTOL = 0.01
+from lgw.sim import convergence as SC
+
+RTOL = SC.RTOL  # the shared tolerance (1 %)
 REFINE = 4  # single runs: the default step against dt / 4
 REFINE_CAMPAIGN = 2  # campaigns: a subset re-flown at dt / 2
 
@@ -48,6 +55,12 @@ QUOTED: dict[str, tuple[str, float]] = {
 }
 
 
+def tolerance(floor: float) -> SC.Tol:
+    """The shared tolerance of a lunar quantity: 1 % of the refined run's value, or of the
+    quantity's floor near zero (``lgw.sim.convergence.Tol`` relative to the check)."""
+    return SC.Tol(RTOL, 0.0, floor, "check")
+
+
 @dataclass(frozen=True)
 class Check:
     """One number at the default step and at the refined step."""
@@ -59,24 +72,22 @@ class Check:
     floor: float
 
     @property
+    def tol(self) -> SC.Tol:
+        return tolerance(self.floor)
+
+    @property
     def difference(self) -> float:
         """|x(dt) - x(dt/refine)| / max(|x(dt/refine)|, floor)."""
-        if not (math.isfinite(self.value) and math.isfinite(self.refined)):
-            return 0.0 if _same_nonfinite(self.value, self.refined) else math.inf
-        return abs(self.value - self.refined) / max(abs(self.refined), self.floor)
+        return self.tol.difference(self.value, self.refined)
 
     @property
     def converged(self) -> bool:
-        return self.difference <= RTOL
+        return self.tol.ok(self.value, self.refined)
 
     def to_dict(self) -> dict[str, Any]:
         return {"value": _num(self.value), "refined": _num(self.refined), "unit": self.unit,
                 "floor": self.floor, "difference": _num(self.difference),
                 "converged": self.converged}
-
-
-def _same_nonfinite(a: float, b: float) -> bool:
-    return (math.isnan(a) and math.isnan(b)) or a == b
 
 
 def _num(x: float) -> float | None:
@@ -86,20 +97,28 @@ def _num(x: float) -> float | None:
 @dataclass(frozen=True)
 class Convergence:
     """The checks of one run: ``dt`` and the refined step, per quantity; the outcome class at
-    both steps must also agree."""
+    both steps must also agree.  ``record`` is the shared ``lgw.sim.convergence``
+    ConvergenceRecord of the same comparison (one case), which decides ``converged``."""
 
     dt: float
     refined_dt: float
     checks: tuple[Check, ...]
     outcome: str
     refined_outcome: str
+    record: SC.ConvergenceRecord | None = field(default=None, compare=False, repr=False)
 
     @property
     def unconverged(self) -> list[Check]:
-        return [c for c in self.checks if not c.converged]
+        if self.outcome != self.refined_outcome:  # numbers of another outcome: not compared
+            return [c for c in self.checks if not c.converged]
+        bad = set() if self.record is None else {
+            m.name for m in self.record.metrics.values() if m.unconverged}
+        return [c for c in self.checks if c.name in bad]
 
     @property
     def converged(self) -> bool:
+        if self.record is not None:
+            return self.record.converged
         return not self.unconverged and self.outcome == self.refined_outcome
 
     def flags(self, label: str = "") -> list[str]:
@@ -126,12 +145,18 @@ class Convergence:
 def compare(numbers: Mapping[str, Any], refined: Mapping[str, Any], dt: float,
             refined_dt: float, outcome: str, refined_outcome: str,
             quoted: Mapping[str, tuple[str, float]] = QUOTED) -> Convergence:
-    """The checks of the quoted numbers present in both summaries."""
+    """The checks of the quoted numbers present in both summaries, through the shared
+    ``lgw.sim.convergence.compare_cases`` (one case, step halving or dt/4)."""
     checks = tuple(Check(k, unit, float(numbers[k]), float(refined[k]), floor)
                    for k, (unit, floor) in quoted.items()
                    if k in numbers and k in refined and numbers[k] is not None
                    and refined[k] is not None)
-    return Convergence(dt, refined_dt, checks, outcome, refined_outcome)
+    rec = SC.compare_cases(
+        [{"outcome": outcome, **{c.name: c.value for c in checks}}],
+        [{"outcome": refined_outcome, **{c.name: c.refined for c in checks}}],
+        {c.name: c.tol for c in checks}, how="step refinement",
+        base_label=f"RK4 dt = {dt:g} s", check_label=f"RK4 dt = {refined_dt:g} s")
+    return Convergence(dt, refined_dt, checks, outcome, refined_outcome, rec)
 
 
 def check(fly: Callable[[float], tuple[Mapping[str, Any], str]], dt: float,

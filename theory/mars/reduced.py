@@ -13,6 +13,9 @@ from lgw.theory.symbolic import np_sig
 from scipy.integrate import solve_ivp
 
 GAIN_ORDER = ("beta1", "beta2", "alpha1", "alpha2", "q1", "q2", "g1", "g2")
+# right-hand-side evaluations one reference integration may use (~50 at each of the 2000
+# max_step steps; a few seconds of Python)
+RHS_BUDGET = 100_000
 
 
 def trajectory(law: str, gains: dict[str, float], r0: float, v0: float, t_end: float,
@@ -21,7 +24,14 @@ def trajectory(law: str, gains: dict[str, float], r0: float, v0: float, t_end: f
     f = law_numeric(law)
     args = [gains[k] for k in GAIN_ORDER]
 
+    calls = [0]
+
     def rhs(t, y):
+        calls[0] += 1
+        if calls[0] > RHS_BUDGET:  # LSODA crawls, it does not fail, when gains make it stiff
+            raise RuntimeError(f"reference integration stopped after {RHS_BUDGET} right-hand "
+                               f"side evaluations at t = {t:.6g} s (the closed loop is too "
+                               "stiff for these gains at rtol 1e-10)")
         acc = f(y[0], y[1], 0.0, 0.0, *args)  # grav and a_m cancel exactly: pass 0 for both
         return [y[1], acc + (a_p(t, y[0], y[1]) if a_p else 0.0)]
 

@@ -1,20 +1,29 @@
-"""Gain design for seed 002's FTSMC (sign switching, the law with a proven time bound).
+"""Gain design for seed 002's FTSMC (sign switching, the law with a proven time bound), and for
+the whole descent (``tune_descent``).
 
 Request: a time target ts (s), a per-axis control limit u_max (m/s^2), an envelope of initial
-errors |e_i(0)| <= e_max, |e_i'(0)| <= v_max, and optionally an unknown-disturbance bound dbar.
+errors |e_i(0)| <= e_max, |e_i'(0)| <= v_max, optionally an unknown-disturbance bound dbar, and
+how the control limit must be known (``u_limit``): "proven" (default) or "sampled".
 
-  1. grid over (alpha, beta, p/q, k) with odd p < q, p/q >= 1/2 (bounded e'|e|^(p/q-1) on the
-     sliding surface, claim singular-term);
-  2. keep the candidates whose proven bound (lgw.theory.eros.bounds.envelope_time_bound:
-     reaching |s0|/(k - dbar) plus sliding time (6) from the worst |e| during reaching, at the
-     envelope's worst corner) is <= ts;
-  3. in order of increasing k (the control it costs), fly the sampled-data loop on the envelope's
-     corners and random interior cases (design campaign) and keep the first whose simulated
-     peak |u_i| <= PEAK_MARGIN u_max and whose acceptance campaign (a fresh seed) has peak
-     <= u_max and every case tracked within ts;
-  4. certificate: the bound's terms, the two campaigns, and a validation campaign (a third
-     seed, not used in any choice) with its worst tracked time and peak.
-The bound is for the continuous-time law; the campaigns show the 0.01 s sampled-data loop.
+The law flown evaluates |e|^(p/q-1) at max(|e|, e_floor): without that floor its command is
+unbounded near e = 0 (from e(0) = 0, e'(0) = 0.5 m/s it is infinite at t = 0), with it the
+command is bounded and the floor is a gain to design.  ``lgw.theory.eros.floored`` proves, for
+the floored law in continuous time, the tracking time and a bound on |u_i| over the whole
+envelope (Arb ball arithmetic); those are what the certificate states as proven.
+
+  1. grid over (alpha, beta, p/q, k, e_floor) with odd p < q, p/q >= 1/2 (bounded
+     e'|e|^(p/q-1) on the sliding surface, claim singular-term);
+  2. keep the candidates whose proven tracking time (``envelope_bound``, a float screen) is
+     <= ts and, for u_limit "proven", whose proven command bound is <= u_max;
+  3. in order of increasing k (the control it costs), fly the 0.01 s sampled-data loop on the
+     envelope's corners and random interior cases (design campaign) and keep the first whose
+     peak |u_i| is <= u_max (PEAK_MARGIN u_max when the limit is only sampled) and whose
+     acceptance campaign (a fresh seed) has peak <= u_max and every case tracked within ts;
+  4. re-prove the winner in Arb (the certificate's numbers), and fly a validation campaign (a
+     third seed, not used in any choice) for its worst tracked time and peak.
+The proofs are for the continuous-time law; the campaigns show the 0.01 s sampled-data loop.
+With u_limit "sampled" the control limit is sampled evidence only, and the certificate says
+so, with the sample size and the best margin.
 """
 
 from __future__ import annotations
@@ -26,15 +35,17 @@ from typing import Any
 import numpy as np
 from lgw.sim.eros.batch import SimOptions, metrics, simulate
 from lgw.sim.eros.campaign import summarize
-from lgw.theory.eros import bounds as B
+from lgw.theory.eros import floored as FL
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros.gains import Gains, default_gains
 from lgw.theory.errors import ParameterError
 
 EXPONENTS = ((3, 5), (5, 7), (7, 9))  # odd p < q, p/q >= 1/2
-ALPHAS = (0.25, 0.5, 1.0, 2.0, 4.0)
+ALPHAS = (0.05, 0.1, 0.25, 0.5, 1.0, 2.0)
 BETAS = (0.25, 0.5, 1.0, 2.0)
 K_FRACTIONS = (0.15, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8)
+E_FLOORS = (1e-4, 1e-3, 3e-3, 1e-2)  # m: the floor of |e| in |e|^(p/q-1)
+U_LIMITS = ("proven", "sampled")
 
 
 @dataclass(frozen=True)
@@ -47,6 +58,7 @@ class Request:
     design_cases: int = 256
     fresh_cases: int = 200
     seed: int = 7
+    u_limit: str = "proven"
 
     def __post_init__(self) -> None:
         for name in ("ts", "u_max", "e_max", "v_max"):
@@ -59,18 +71,34 @@ class Request:
             if getattr(self, name) < 1:
                 raise ParameterError(f"--{name.replace('_', '-')}", getattr(self, name),
                                      "must be >= 1")
+        if self.u_limit not in U_LIMITS:
+            raise ParameterError("--u-limit", self.u_limit, "one of " + ", ".join(U_LIMITS))
+
+    @property
+    def known_amp(self) -> float:
+        """The disturbance amplitude the controller cancels (D known: the paper's sinusoid)."""
+        return 0.0 if self.dbar > 0 else P.DIST_AMP
+
+
+def proof(g: Gains, req: Request, screen: bool = False) -> dict[str, Any]:
+    """The proven bounds of ``g`` over the request's envelope (lgw.theory.eros.floored)."""
+    return FL.envelope_bound(g, req.e_max, req.v_max, dm=req.dbar, known_amp=req.known_amp,
+                             screen=screen)
 
 
 def envelope_cases(req: Request, n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     """The 8 per-axis sign corners of (e0, ed0) (same on every axis: the bound's worst case is
-    a corner) and n - 8 uniform interior cases."""
+    a corner), the states where the command bound is attained (e0 = 0 and |e0| = e_floor with
+    |e0'| = v_max, the sign pairs) and n - 8 - 4 uniform interior cases."""
     corners = np.array(list(itertools.product((-1, 1), repeat=2)), float)
     ce = np.repeat(corners[:, :1] * req.e_max, 3, axis=1)
     cv = np.repeat(corners[:, 1:] * req.v_max, 3, axis=1)
+    ze = np.zeros((4, 3))
+    zv = np.repeat(corners[:, 1:] * req.v_max, 3, axis=1)
     rng = np.random.default_rng(seed)
-    m = max(n - len(ce), 0)
-    return (np.vstack([ce, rng.uniform(-req.e_max, req.e_max, (m, 3))]),
-            np.vstack([cv, rng.uniform(-req.v_max, req.v_max, (m, 3))]))
+    m = max(n - len(ce) - len(ze), 0)
+    return (np.vstack([ce, ze, rng.uniform(-req.e_max, req.e_max, (m, 3))]),
+            np.vstack([cv, zv, rng.uniform(-req.v_max, req.v_max, (m, 3))]))
 
 
 def fly(g: Gains, req: Request, e0, ed0, seed: int) -> dict[str, float]:
@@ -84,56 +112,150 @@ def fly(g: Gains, req: Request, e0, ed0, seed: int) -> dict[str, float]:
             "nonfinite": int(np.sum(s["nonfinite"])), "cases": len(e0)}
 
 
-def candidates(req: Request) -> list[tuple[float, float, Gains, dict[str, float]]]:
+def candidates(req: Request) -> list[tuple[float, float, Gains, dict[str, Any]]]:
+    """(k, proven time, gains, float-screened bounds) of every grid point whose proven
+    tracking time meets ts (and proven command bound meets u_max, for u_limit "proven"),
+    cheapest k first."""
     base = default_gains()
     out = []
-    for (p, q), a, b, kf in itertools.product(EXPONENTS, ALPHAS, BETAS, K_FRACTIONS):
+    for (p, q), a, b, kf, ef in itertools.product(EXPONENTS, ALPHAS, BETAS, K_FRACTIONS,
+                                                  E_FLOORS):
         k = kf * req.u_max
         if k <= req.dbar:
             continue
-        g = base.replace(alpha=a, beta=b, p=p, q=q, k=k, lam=a)
-        bd = B.envelope_time_bound(g, req.e_max, req.v_max, req.dbar)
-        if bd["t_total"] <= req.ts:
+        g = base.replace(alpha=a, beta=b, p=p, q=q, k=k, lam=a, e_floor=ef)
+        if not all(FL.hypotheses(g, req.dbar).values()):
+            continue
+        bd = proof(g, req, screen=True)
+        if bd["t_total"] <= req.ts and (req.u_limit == "sampled" or bd["u"] <= req.u_max):
             out.append((k, bd["t_total"], g, bd))
-    out.sort(key=lambda c: (c[0], c[1]))
+    out.sort(key=lambda c: (c[0], c[3]["u"], c[1]))
     return out
 
 
-PEAK_MARGIN = 0.9  # chosen: the design campaign must stay under 0.9 u_max (the peaks come
-#                   from samples near e = 0, where e'|e|^(p/q-1) is large: sparse in a campaign)
+PEAK_MARGIN = 0.9  # chosen: with a sampled limit only, the design campaign must stay under
+#                   0.9 u_max (the peaks come from samples near e = 0, where e'|e|^(p/q-1) is
+#                   large: sparse in a campaign)
+
+
+def _closest(req: Request) -> str:
+    """Why no grid point has a proven bound: the best proven command bound among the points
+    meeting ts, or the best proven time."""
+    base = default_gains()
+    best_u, best_t = None, None
+    for (p, q), a, b, kf, ef in itertools.product(EXPONENTS, ALPHAS, BETAS, K_FRACTIONS,
+                                                  E_FLOORS):
+        g = base.replace(alpha=a, beta=b, p=p, q=q, k=kf * req.u_max, lam=a, e_floor=ef)
+        if kf * req.u_max <= req.dbar or not all(FL.hypotheses(g, req.dbar).values()):
+            continue
+        bd = proof(g, req, screen=True)
+        if best_t is None or bd["t_total"] < best_t[0]:
+            best_t = (bd["t_total"], g)
+        if bd["t_total"] <= req.ts and (best_u is None or bd["u"] < best_u[0]):
+            best_u = (bd["u"], g)
+    if best_u is not None:
+        u, g = best_u
+        return (f"the least proven command bound among the grid points whose proven tracking "
+                f"time meets {req.ts:g} s is {u:.4g} m/s^2 > u_max = {req.u_max:.4g} m/s^2 "
+                f"(alpha = {g.alpha:g}, beta = {g.beta:g}, p/q = {g.p}/{g.q}, k = {g.k:.4g}, "
+                f"e_floor = {g.e_floor:g}); give a larger --ts or --thrust-max, a smaller "
+                "envelope, or --u-limit sampled")
+    if best_t is not None:
+        return (f"no grid point has a proven tracking time <= {req.ts:g} s (the least is "
+                f"{best_t[0]:.4g} s)")
+    return "no grid point satisfies the hypotheses (k > dbar, h(tol) > delta)"
 
 
 def tune(req: Request, max_sims: int = 16) -> dict[str, Any]:
-    """The cheapest-k candidate whose design campaign stays under PEAK_MARGIN u_max and whose
-    acceptance campaign (fresh seed) meets u_max and ts; then a validation campaign (a third
-    seed, reported whatever it gives).  Returns "gains", "bound", "design", "fresh",
-    "validation", "tried", or "infeasible" with the reason."""
+    """The cheapest-k candidate (module docstring): "gains", "bound" (the Arb proof),
+    "design", "fresh", "validation", "tried", or "infeasible" with the reason."""
     cands = candidates(req)
     if not cands:
-        return {"infeasible": f"no grid point has a proven bound <= {req.ts} s for the "
-                f"envelope (|e0| <= {req.e_max} m, |ed0| <= {req.v_max} m/s) with "
-                f"k <= {max(K_FRACTIONS)} u_max"}
+        return {"infeasible": _closest(req)}
     e0, ed0 = envelope_cases(req, req.design_cases, req.seed)
-    fe0, fed0 = envelope_cases(req, req.fresh_cases + 8, req.seed + 1000)
+    fe0, fed0 = envelope_cases(req, req.fresh_cases + 12, req.seed + 1000)
+    limit = req.u_max if req.u_limit == "proven" else PEAK_MARGIN * req.u_max
     tried = []
-    for k, bound, g, bd in cands[:max_sims]:
+    for k, bound, g, _ in cands[:max_sims]:
         d = fly(g, req, e0, ed0, req.seed)
-        row = {"alpha": g.alpha, "beta": g.beta, "p": g.p, "q": g.q, "k": k, "bound": bound,
-               "design_peak": d["peak"]}
+        row = {"alpha": g.alpha, "beta": g.beta, "p": g.p, "q": g.q, "k": k,
+               "e_floor": g.e_floor, "bound": bound, "design_peak": d["peak"]}
         tried.append(row)
-        if d["peak"] > PEAK_MARGIN * req.u_max or d["nonfinite"]:
+        if d["peak"] > limit or d["nonfinite"]:
             continue
-        fresh = fly(g, req, fe0[8:], fed0[8:], req.seed + 1000)
+        fresh = fly(g, req, fe0[12:], fed0[12:], req.seed + 1000)
         row["fresh_peak"] = fresh["peak"]
-        if fresh["peak"] <= req.u_max and fresh["t_track_max"] <= req.ts and \
-                not fresh["nonfinite"]:
-            ve0, ved0 = envelope_cases(req, req.fresh_cases + 8, req.seed + 2000)
-            val = fly(g, req, ve0[8:], ved0[8:], req.seed + 2000)
-            return {"gains": g, "bound": bd, "design": d, "fresh": fresh, "validation": val,
-                    "tried": tried}
+        if not (fresh["peak"] <= req.u_max and fresh["t_track_max"] <= req.ts
+                and not fresh["nonfinite"]):
+            continue
+        bd = proof(g, req)
+        row["proven_u"], row["proven_t"] = bd["u"], bd["t_total"]
+        if bd["t_total"] > req.ts or (req.u_limit == "proven" and bd["u"] > req.u_max):
+            row["rejected"] = "the Arb proof does not confirm the float screen"
+            continue
+        ve0, ved0 = envelope_cases(req, req.fresh_cases + 12, req.seed + 2000)
+        val = fly(g, req, ve0[12:], ved0[12:], req.seed + 2000)
+        return {"gains": g, "bound": bd, "design": d, "fresh": fresh, "validation": val,
+                "tried": tried}
     return {"infeasible": f"none of the {len(tried)} cheapest candidates with a proven bound "
             f"stays under u_max = {req.u_max} m/s^2 in simulation (lowest design peak "
             f"{min(t['design_peak'] for t in tried):.3g})", "tried": tried}
+
+
+def round_up(x: float, digits: int = 4) -> float:
+    """x rounded up to ``digits`` significant digits: a promise stated with a little room above
+    the proven number, so that the proof re-done elsewhere (another Arb build) still meets it."""
+    import math
+
+    if not math.isfinite(x) or x == 0:
+        return x
+    q = 10.0 ** (math.floor(math.log10(abs(x))) - digits + 1)
+    return math.ceil(x / q) * q
+
+
+def certificate(res: dict[str, Any], req: Request, thrust_max: float,
+                probe_mass: float) -> dict[str, Any]:
+    """The [certificate] table of a feasible design: each promise with its evidence word
+    ("proven" only for what ``lgw.theory.eros.floored`` proves in Arb; "sampled" with the
+    sample size and the best margin otherwise)."""
+    bd, d, fr, va = res["bound"], res["design"], res["fresh"], res["validation"]
+    cases = d["cases"] + fr["cases"] + va["cases"]
+    peak = max(d["peak"], fr["peak"], va["peak"])
+    u_margin = (req.u_max - peak) / req.u_max
+    t_margin = (req.ts - max(fr["t_track_max"], va["t_track_max"])) / req.ts
+    u_proven = bd["u"] <= req.u_max
+    sampled = (f"{cases} cases of the 0.01 s sampled loop ({d['cases']} design, {fr['cases']} "
+               f"acceptance, {va['cases']} validation), peak {peak:.6g} m/s^2, best margin "
+               f"{u_margin:.4g}")
+    return {
+        "law": "ftsmc-sign", "scenario": "tracking", "ts_target": req.ts,
+        "thrust_max": thrust_max, "probe_mass": probe_mass, "u_max": req.u_max,
+        "e_max": req.e_max, "v_max": req.v_max, "dbar": req.dbar,
+        "u_limit": req.u_limit,
+        "bound_t_total": min(round_up(bd["t_total"]), req.ts), "bound_t_reach": bd["t_reach"],
+        "bound_t_slide": bd["t_slide"], "bound_u": round_up(bd["u"]), "bound_drift": bd["drift"],
+        "bound_e": bd["E"], "bound_v": bd["V"], "bound_delta": bd["delta"],
+        "bound_evidence": f"proven: tracking (|e_i| <= {P.TRACK_TOL:g} m) by "
+                          f"{bd['t_total']:.6g} s <= ts from every state of the envelope, "
+                          "for the continuous-time floored law (lgw.theory.eros.floored, Arb); "
+                          f"the sampled loop: {cases} cases, best margin {t_margin:.4g}",
+        "u_max_evidence": (f"proven: |u_i| <= {bd['u']:.6g} m/s^2 <= u_max from every state "
+                           "of the envelope, for the continuous-time floored law "
+                           f"(lgw.theory.eros.floored, Arb); the sampled loop: {sampled}"
+                           if u_proven else
+                           f"sampled, not proven (the proven bound {bd['u']:.6g} m/s^2 "
+                           f"exceeds u_max): {sampled}"),
+        "u_max_cases": cases, "u_max_margin": u_margin,
+        "design_cases": d["cases"], "design_peak": d["peak"],
+        "acceptance_cases": fr["cases"], "acceptance_seed": req.seed + 1000,
+        "acceptance_peak": fr["peak"], "acceptance_t_track_max": fr["t_track_max"],
+        "validation_cases": va["cases"], "validation_seed": req.seed + 2000,
+        "validation_peak": va["peak"], "validation_t_track_max": va["t_track_max"],
+        "validation_nonfinite": va["nonfinite"],
+        "validation_meets": bool(va["peak"] <= req.u_max and va["t_track_max"] <= req.ts
+                                 and va["nonfinite"] == 0),
+        "candidates_tried": len(res["tried"]),
+    }
 
 
 # --- the whole descent --------------------------------------------------------------------------
@@ -255,3 +377,28 @@ def tune_descent(req: DescentRequest) -> dict[str, Any]:
     return {"gains": g, "floor": fl, "design": d, "fresh": fresh, "tried": tried,
             "fresh_meets": bool(fresh["landed"] == fresh["cases"]
                                 and fresh["speed_max"] <= req.land_speed)}
+
+
+def descent_certificate(res: dict[str, Any], req: DescentRequest) -> dict[str, Any]:
+    """The [certificate] table of a descent design: the landing promise is sampled evidence
+    (the campaigns), with its sample size and best margin; what verify needs to fly it again
+    (law, thrust, touchdown speed, navigation)."""
+    fl, d, fr = res["floor"], res["design"], res["fresh"]
+    margin = (req.land_speed - fr["speed_max"]) / req.land_speed
+    return {
+        "law": req.law, "scenario": "descent", "thrust_max": req.thrust_max,
+        "probe_mass": P.PROBE_MASS, "u_max": req.thrust_max / P.PROBE_MASS,
+        "land_speed": req.land_speed, "nav": req.nav,
+        "k_floor": fl["k_floor"], "k_floor_dbar": fl["dbar"], "k_floor_fbar": fl["fbar"],
+        "landing_evidence": f"sampled: {fr['cases']} fresh cases (seed {req.seed + 1000}, "
+                            f"lgw.sim.eros.descent.dispersions, navigation errors "
+                            f"{'on' if req.nav else 'off'}) all landed, touchdown speed at "
+                            f"most {fr['speed_max']:.4g} m/s, best margin {margin:.4g}",
+        "design_cases": d["cases"], "design_seed": req.seed, "design_landed": d["landed"],
+        "design_speed_max": d["speed_max"], "design_fuel_mean_kg": d["fuel_mean"],
+        "fresh_cases": fr["cases"], "fresh_seed": req.seed + 1000,
+        "fresh_landed": fr["landed"], "fresh_speed_max": fr["speed_max"],
+        "fresh_fuel_mean_kg": fr["fuel_mean"], "fresh_fuel_max_kg": fr["fuel_max"],
+        "fresh_site_distance_max_m": fr["site_distance_max"],
+        "landing_margin": margin, "candidates_tried": len(res["tried"]),
+    }

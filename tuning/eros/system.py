@@ -24,7 +24,11 @@ SYSTEM = System(
                        "control limit, with a certificate"),
         "compare": Verb(f"{_M}.cmd_compare", "the six controllers on Table 2's metrics and "
                           "the tracking times, 15 s scenario (table, JSON, figure)"),
-        "optimal": NotApplicable("pending"),
+        "optimal": NotApplicable(
+            "seed 002 has no separate offline baseline: its laws track the paper's own "
+            "optimal trajectory (Table 1's boundary values, the descent profile), "
+            "which simulate and compare fly; the lossless-convexification baseline is "
+            "seed 000's Part 1 comparison"),
         "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
                        "one step"),
     },

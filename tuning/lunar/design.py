@@ -600,13 +600,14 @@ class CertificateCheck:
 
 
 def check_certificate(g: Gains, cases: int = 16, seed: int = 12345,
-                      progress: Any = None) -> list[CertificateCheck]:
+                      progress: Any = None, sampled: bool = True) -> list[CertificateCheck]:
     """Re-check every promise of a tuned file's [certificate] (for ``lgw verify lunar``):
     the proven ones are recomputed from the file's gains (the redundancy in exact arithmetic,
     the hypotheses, the (18) constants against linfnorm); the sampled ones are re-flown on a
     fresh campaign of ``cases`` cases (``seed``) over the certificate's envelope with the
     file's command filter and thrust limit.  A promise the file's numbers contradict (e.g. a
-    stated T_max below the demand) fails with the observed value."""
+    stated T_max below the demand) fails with the observed value.  ``sampled=False``: the
+    proven promises only (no flight)."""
     req = certificate_request(g)
     cert = g.extra["certificate"]
     out: list[CertificateCheck] = []
@@ -629,6 +630,8 @@ def check_certificate(g: Gains, cases: int = 16, seed: int = 12345,
             f"L2 gain B0 du -> {lam} <= {key}", "proven", true, stated,
             (stated - true) / stated, bool(true <= stated * (1 + 1e-9)),
             f"stated {stated:.6g}, (18) recomputed {l2[key]:.6g}, linfnorm {true:.6g}"))
+    if not sampled:
+        return out
     opts = RunOptions(dt=req.dt, thrust_max=tm, cmd_wn=float(cert["cmd_wn_rad_s"]),
                       thrust_pointing=req.pointing)
     acc = acceptance(g, opts, req, seed, cases=cases, progress=progress)

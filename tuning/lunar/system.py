@@ -25,7 +25,12 @@ SYSTEM = System(
                        "tracking target and the thrust limit with the failure, certified"),
         "compare": Verb(f"{_M}.cmd_compare", "Section 5 with and without failure and "
                           "saturation, ideal against coupled pointing, the filter swept"),
-        "optimal": NotApplicable("pending"),
+        "optimal": NotApplicable(
+            "seed 001 has no separate offline baseline: its law tracks the paper's own "
+            "optimal descent (linear-tangent steering (3)-(4), solved as a boundary-value "
+            "problem), "
+            "which simulate and compare fly; the lossless-convexification baseline is "
+            "seed 000's Part 1 comparison"),
         "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
                        "one step"),
     },
