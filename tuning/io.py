@@ -207,10 +207,13 @@ class Stream:
     text into the open file ``f``.  In a JSON document, a ``Stream`` of items (``items``:
     an iterable of JSON values) is written as an array, one item at a time; ``items`` may be
     a function returning a fresh iterator, so that one document can be written twice (to
-    stdout and into ``--out``) without holding its items in memory."""
+    stdout and into ``--out``) without holding its items in memory.  Or, given ``encoded``
+    (an iterable of texts, each one or more array items already encoded as strict JSON and
+    joined by ","), the texts are written as they are (no per-value walk: the producer
+    answers for strict JSON; a function returning a fresh iterable as for ``items``)."""
 
-    def __init__(self, items: Any = None, write: Any = None) -> None:
-        self.items, self.write = items, write
+    def __init__(self, items: Any = None, write: Any = None, encoded: Any = None) -> None:
+        self.items, self.write, self.encoded = items, write, encoded
 
 
 def _same_file(a: Path, b: Path) -> bool:
@@ -369,7 +372,15 @@ def write_output_set(folder: Path, files: dict[str, Any], command: str,
 
 
 def _stream_json(value: Any, out: Any, flag: list[bool]) -> None:
-    if isinstance(value, Stream):
+    if isinstance(value, Stream) and value.encoded is not None:
+        out.write("[")
+        first = True
+        for text in value.encoded() if callable(value.encoded) else value.encoded:
+            if text:
+                out.write(text if first else "," + text)
+                first = False
+        out.write("]")
+    elif isinstance(value, Stream):
         out.write("[")
         items = value.items() if callable(value.items) else value.items
         for i, item in enumerate(items):

@@ -16,13 +16,18 @@ SeedSequence(seed).spawn child, so the results are identical whatever the execut
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import json
+import math
+import shutil
+import tempfile
+import weakref
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from lgw.sim import executors
-from lgw.sim.mars.batch import OUTCOMES_USED, BatchResult, simulate_batch
+from lgw.sim.mars.batch import ARRAY_FIELDS, OUTCOMES_USED, BatchResult, simulate_batch
 from lgw.sim.results import OUTCOMES, counts
 from lgw.sim.stats import finite_stats
 from lgw.theory.errors import ParameterError
@@ -104,16 +109,20 @@ def _run_chunk(r0, v0, m0, gains, start: int, opts: dict[str, Any]) -> BatchResu
 def run_campaign(r0: np.ndarray, v0: np.ndarray, m0: np.ndarray, gains: Gains, *,
                  executor: str = "local", workers: int | None = None,
                  scheduler: str | None = None, processes: bool = True,
-                 chunk: int = DEFAULT_CHUNK, progress: bool = False,
-                 **opts: Any) -> BatchResult:
+                 chunk: int = DEFAULT_CHUNK, progress: bool = False, spill: bool = False,
+                 **opts: Any) -> BatchResult | SpilledResult:
     """Run a campaign with ``lgw.sim.mars.batch.simulate_batch`` options ``opts``.
 
     executor="local": in-process, numba threads over cases.
     executor="dask": ``scheduler`` (address of a running dask scheduler) or a LocalCluster
       with ``workers`` single-threaded workers (``processes=False`` keeps them in-process).
     Both go through ``lgw.sim.executors`` (the same chunks, so the same results).
+    spill=True (local executor): the per-case results go to disk SPILL_CHUNK cases at a time,
+      a ``SpilledResult`` (flat memory in the number of cases; the same results).
     """
     if executor == "local":
+        if spill:
+            return _run_spilled(r0, v0, m0, gains, chunk=chunk, progress=progress, **opts)
         return simulate_batch(r0, v0, m0, gains, progress=progress, chunk=chunk, **opts)
     if executor != "dask":
         raise ParameterError("executor", executor, "must be 'local' or 'dask'")
@@ -139,10 +148,12 @@ def _stats(x: np.ndarray, include: np.ndarray | None = None) -> dict[str, float 
     return finite_stats(x, include)
 
 
-def summarize(res: BatchResult) -> dict[str, Any]:
+def summarize(res: BatchResult | SpilledResult) -> dict[str, Any]:
     """Counts per outcome, and statistics over the cases of each quantity's outcome (landed
     cases for the landing numbers, crashed cases for the impact), with eps and dt.  Each
-    statistic says how many cases it summarises and how many it leaves out."""
+    statistic says how many cases it summarises and how many it leaves out.  From a
+    ``SpilledResult`` each per-case array is read when it is used and dropped after: a million
+    cases hold a few columns at a time (8-24 bytes per case each)."""
     code, _ = res.outcomes()
     landed = code == OUTCOMES.index("landed")
     crashed = code == OUTCOMES.index("crashed")
@@ -191,54 +202,232 @@ def summarize(res: BatchResult) -> dict[str, Any]:
     out["settings"] = {k: v for k, v in res.info.items() if k != "refined_dt"}
     if res.nonfinite.any():
         idx = np.flatnonzero(res.nonfinite)
-        out["nonfinite_cases"] = [{"case": int(i), "r0": res.r0[i].tolist(),
-                                   "v0": res.v0[i].tolist(), "m0": float(res.m0[i]),
-                                   "t_end": float(res.t_end[i])} for i in idx]
+        r0, v0, m0, t_end = (take(res, k, idx) for k in ("r0", "v0", "m0", "t_end"))
+        out["nonfinite_cases"] = [{"case": int(i), "r0": r0[j].tolist(), "v0": v0[j].tolist(),
+                                   "m0": float(m0[j]), "t_end": float(t_end[j])}
+                                  for j, i in enumerate(idx)]
     return out
 
 
-def _num(x: float) -> float | None:
-    return float(x) if np.isfinite(x) else None
+# the case record's keys, in order: "case", the per-case arrays (RECORD_ARRAYS, "impact_speed"
+# and "below_surface" among them), then the run's and the outcome's
+RECORD_ARRAYS = ("r0", "v0", "m0", "landed", "landing_time", "r_land", "v_land", "fuel",
+                 "peak_thrust", "peak_thrust_unsat", "peak_thrust_stages",
+                 "peak_thrust_unsat_stages", "peak_thrust_after_arrival", "time_saturated",
+                 "min_altitude", "ground_contact", "t_s1", "t_s2", "t_s1_last_exit",
+                 "t_s2_last_exit", "nonfinite", "fuel_exhausted", "step_limit", "steps",
+                 "t_end",
+                 # the ground contact (lgw.sim.results): time, point and velocity at the
+                 # crossing, |velocity| there
+                 "contact_time", "contact_point", "impact_velocity", "impact_speed",
+                 "below_surface")
+RECORD_CHUNK = 4096  # cases turned into records at a time
 
 
-def case_records(res: BatchResult, n: int | None = None) -> list[dict[str, Any]]:
+def _listed(a: np.ndarray) -> list:
+    """``a.tolist()`` (nested for (n, 3)) with every non-finite value None (JSON null)."""
+    if a.dtype.kind == "f":
+        bad = ~np.isfinite(a)
+        if bad.any():
+            o = a.astype(object)
+            o[bad] = None
+            return o.tolist()
+    return a.tolist()
+
+
+def case_records(res: BatchResult | SpilledResult, n: int | None = None
+                 ) -> list[dict[str, Any]]:
     """One JSON-ready record per case (NaN -> null); the first ``n`` cases only if given."""
     return list(iter_case_records(res, n))
 
 
-def iter_case_records(res: BatchResult, n: int | None = None) -> Iterator[dict[str, Any]]:
-    """``case_records`` one at a time (a million cases in flat memory)."""
-    code, t_out = res.outcomes()
-    imp = res.impact_speed
+def iter_case_records(res: BatchResult | SpilledResult, n: int | None = None
+                      ) -> Iterator[dict[str, Any]]:
+    """``case_records`` one at a time, made RECORD_CHUNK cases at a time from whole columns
+    (``tolist``, not one numpy scalar per value); from a ``SpilledResult`` in flat memory."""
+    total = len(res) if n is None else min(n, len(res))
     # the RK4 step of a case refined until its outcome settled (lgw.sim.mars.converged)
     refined = res.info.get("refined_dt", {})
-    for i in range(len(res) if n is None else min(n, len(res))):
-        yield {
-            "case": i, "r0": res.r0[i].tolist(), "v0": res.v0[i].tolist(),
-            "m0": float(res.m0[i]), "landed": bool(res.landed[i]),
-            "landing_time": _num(res.landing_time[i]),
-            "r_land": [_num(x) for x in res.r_land[i]], "v_land": [_num(x) for x in res.v_land[i]],
-            "fuel": _num(res.fuel[i]), "peak_thrust": [_num(x) for x in res.peak_thrust[i]],
-            "peak_thrust_unsat": [_num(x) for x in res.peak_thrust_unsat[i]],
-            "peak_thrust_stages": [_num(x) for x in res.peak_thrust_stages[i]],
-            "peak_thrust_unsat_stages": [_num(x) for x in res.peak_thrust_unsat_stages[i]],
-            "peak_thrust_after_arrival": [_num(x) for x in res.peak_thrust_after_arrival[i]],
-            "time_saturated": _num(res.time_saturated[i]),
-            "min_altitude": _num(res.min_altitude[i]),
-            "ground_contact": bool(res.ground_contact[i]),
-            "t_s1": [_num(x) for x in res.t_s1[i]], "t_s2": [_num(x) for x in res.t_s2[i]],
-            "t_s1_last_exit": [_num(x) for x in res.t_s1_last_exit[i]],
-            "t_s2_last_exit": [_num(x) for x in res.t_s2_last_exit[i]],
-            "nonfinite": bool(res.nonfinite[i]), "fuel_exhausted": bool(res.fuel_exhausted[i]),
-            "step_limit": bool(res.step_limit[i]), "steps": int(res.steps[i]),
-            "t_end": _num(res.t_end[i]),
-            # the ground contact (lgw.sim.results): time, point and velocity at the crossing
-            "contact_time": _num(res.contact_time[i]),
-            "contact_point": [_num(x) for x in res.contact_point[i]],
-            "impact_velocity": [_num(x) for x in res.impact_velocity[i]],
-            "impact_speed": _num(imp[i]), "below_surface": bool(res.below_surface[i]),
-            "refined_dt": refined.get(i),
-            "eps": res.eps,
+    for a in range(0, total, RECORD_CHUNK):
+        part = result_rows(res, slice(a, min(a + RECORD_CHUNK, total)))
+        code, t_out = part.outcomes()
+        cols = [_listed(np.asarray(getattr(part, k))) for k in RECORD_ARRAYS]
+        outcome = [OUTCOMES[k] for k in code.tolist()]
+        t_out = _listed(t_out)
+        eps = part.eps
+        for j, vals in enumerate(zip(*cols, strict=True)):
+            rec = {"case": a + j}
+            rec.update(zip(RECORD_ARRAYS, vals, strict=True))
+            rec["refined_dt"] = refined.get(a + j)
+            rec["eps"] = eps
             # the case's one outcome (lgw.sim.results.OUTCOMES) and its time, s
-            "outcome": OUTCOMES[code[i]], "outcome_time": _num(t_out[i]),
-        }
+            rec["outcome"] = outcome[j]
+            rec["outcome_time"] = t_out[j]
+            yield rec
+
+
+Records = Callable[[Iterator[dict[str, Any]]], Iterable[dict[str, Any]]]
+
+
+class CaseJson:
+    """The case records of ``res`` (the first ``n``; each passed through ``post`` if given) as
+    JSON text, RECORD_CHUNK records at a time joined by "," (items of a JSON array, strict
+    JSON: non-finite values are already null), for ``lgw.tuning.io.Stream(encoded=...)``: the
+    same bytes as the records written one by one, without a walk over every value.  Each
+    iteration starts afresh (a document may be written twice: --out and stdout)."""
+
+    def __init__(self, res: BatchResult | SpilledResult, n: int | None = None,
+                 post: Records | None = None) -> None:
+        self.res, self.n, self.post = res, n, post
+
+    def __iter__(self) -> Iterator[str]:
+        recs: Iterable[dict[str, Any]] = iter_case_records(self.res, self.n)
+        if self.post is not None:
+            recs = self.post(recs)
+        buf: list[str] = []
+        for rec in recs:
+            buf.append(json.dumps(rec, allow_nan=False))
+            if len(buf) == RECORD_CHUNK:
+                yield ",".join(buf)
+                buf = []
+        if buf:
+            yield ",".join(buf)
+
+
+# --- campaigns kept on disk -----------------------------------------------------------------
+
+SPILL_CHUNK = 16384  # cases flown, then written to disk, at a time (~10 MB of results)
+_SPILLED = tuple(dict.fromkeys((*ARRAY_FIELDS, "r0", "v0", "m0")))
+
+
+class SpilledResult:
+    """A campaign's per-case results on disk, one raw file per array (``SPILL_CHUNK`` cases
+    are in memory at a time while it is flown), in a temporary folder removed with the object.
+
+    It reads as a ``BatchResult``: every per-case array is an attribute (the file mapped at
+    each access, copy on write: a summary reads one or a few whole columns at a time, never all
+    of them; code that takes case i of an array reads its page, not the column), ``len``,
+    ``outcomes()``, ``crashed``, ``impact_speed``, ``eps``, ``dt``, ``info``, ``with_rows``
+    (in place: a copy would double the campaign on disk); ``rows(sl)`` and ``take(idx)`` are
+    the ``BatchResult`` of some cases.  So a million cases take a few columns of memory (8-24
+    bytes per case each) instead of every array of every case (~600 bytes per case)."""
+
+    trajectory = None
+
+    def __init__(self, folder: str | Path | None = None) -> None:
+        self.folder = Path(tempfile.mkdtemp(prefix="lgw-campaign-", dir=folder))
+        self._finalizer = weakref.finalize(self, shutil.rmtree, str(self.folder), True)
+        self._n = 0
+        self._layout: dict[str, tuple[np.dtype, tuple[int, ...]]] = {}
+        self.eps = math.nan
+        self.dt = math.nan
+        self.info: dict[str, Any] = {}
+
+    def append(self, part: BatchResult) -> None:
+        """Write the cases of ``part`` after those already held."""
+        if not self._layout:
+            self.eps, self.dt, self.info = part.eps, part.dt, dict(part.info)
+            self._layout = {k: (getattr(part, k).dtype, getattr(part, k).shape[1:])
+                            for k in _SPILLED}
+        for k in _SPILLED:
+            a = np.ascontiguousarray(getattr(part, k), dtype=self._layout[k][0])
+            with open(self.folder / k, "ab") as f:
+                a.tofile(f)
+        self._n += len(part)
+
+    def __len__(self) -> int:
+        return self._n
+
+    def _map(self, name: str, mode: str = "r") -> np.memmap:
+        dtype, tail = self._layout[name]
+        return np.memmap(self.folder / name, dtype=dtype, mode=mode, shape=(self._n, *tail))
+
+    def column(self, name: str, sl: slice = slice(None)) -> np.ndarray:
+        """Cases ``sl`` (step 1) of the array ``name``, read from disk."""
+        dtype, tail = self._layout[name]
+        a, b, _ = sl.indices(self._n)
+        b = max(a, b)
+        per = int(np.prod(tail, dtype=np.int64)) if tail else 1
+        out = np.fromfile(self.folder / name, dtype=dtype, count=(b - a) * per,
+                          offset=a * per * dtype.itemsize)
+        return out.reshape((b - a, *tail))
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        if name.startswith("_") or name not in self.__dict__.get("_layout", {}):
+            raise AttributeError(name)
+        if not self._n:
+            return self.column(name)
+        # mapped, copy on write: a whole-column operation reads the column, an element or a
+        # row (res.t_s2[i]: a view) reads its page only and does not hold the column in memory
+        return self._map(name, "c")
+
+    def rows(self, sl: slice) -> BatchResult:
+        """The cases ``sl`` as a ``BatchResult`` (in memory)."""
+        kw = {k: self.column(k, sl) for k in _SPILLED}
+        return BatchResult(eps=self.eps, dt=self.dt, info=self.info, **kw)
+
+    def take(self, name: str, idx: np.ndarray) -> np.ndarray:
+        """The cases ``idx`` of the array ``name`` (only their rows are read)."""
+        if not self._n:
+            return self.column(name)[np.asarray(idx, np.int64)]
+        return np.array(self._map(name)[np.asarray(idx, np.int64)])
+
+    def with_rows(self, idx: np.ndarray, other: BatchResult) -> SpilledResult:
+        """``BatchResult.with_rows`` on disk: cases ``idx`` replaced by the cases of ``other``
+        (in order), ``info["replaced"]`` lists them; in place, and returns self."""
+        idx = np.asarray(idx, dtype=np.int64)
+        if len(idx) != len(other):
+            raise ValueError(f"with_rows: {len(idx)} indices for {len(other)} cases")
+        if len(idx):
+            for k in ARRAY_FIELDS:
+                m = self._map(k, "r+")
+                m[idx] = getattr(other, k)
+                m.flush()
+                del m
+        self.info = dict(self.info)
+        self.info["replaced"] = sorted({*self.info.get("replaced", []), *idx.tolist()})
+        return self
+
+    outcomes = BatchResult.outcomes  # classify on the columns, as BatchResult does
+    crashed = BatchResult.crashed
+    impact_speed = BatchResult.impact_speed
+
+    def close(self) -> None:
+        """Remove the folder now (it is removed anyway when the object is collected)."""
+        self._finalizer()
+
+
+def result_rows(res: BatchResult | SpilledResult, sl: slice) -> BatchResult:
+    """The cases ``sl`` of a campaign result, as a ``BatchResult``."""
+    if isinstance(res, SpilledResult):
+        return res.rows(sl)
+    kw = {k: getattr(res, k)[sl] for k in _SPILLED}
+    return BatchResult(eps=res.eps, dt=res.dt, info=res.info, **kw)
+
+
+def take(res: BatchResult | SpilledResult, name: str, idx: np.ndarray) -> np.ndarray:
+    """The cases ``idx`` of the per-case array ``name`` of a campaign result."""
+    if isinstance(res, SpilledResult):
+        return res.take(name, idx)
+    return getattr(res, name)[np.asarray(idx, np.int64)]
+
+
+def _run_spilled(r0, v0, m0, gains: Gains, *, chunk: int, progress: bool,
+                 **opts: Any) -> SpilledResult:
+    """``run_campaign`` (local) flown SPILL_CHUNK cases at a time into a ``SpilledResult``;
+    each case is the same as in one call over all cases (its disturbance is drawn from its own
+    case index: ``case_offset``)."""
+    for k in ("record", "dist_spec", "case_offset"):
+        if opts.get(k):
+            raise ParameterError(k, opts[k], "cannot be given to a campaign kept on disk "
+                                 "(spill=True)")
+    r0 = np.atleast_2d(np.asarray(r0, float))
+    v0 = np.atleast_2d(np.asarray(v0, float))
+    m0 = np.broadcast_to(np.asarray(m0, float), (r0.shape[0],))
+    out = SpilledResult()
+
+    def fly(sl: slice) -> None:
+        out.append(simulate_batch(r0[sl], v0[sl], m0[sl], gains, case_offset=sl.start,
+                                  chunk=chunk, **opts))
+    executors.run_local(fly, r0.shape[0], SPILL_CHUNK, progress=progress)
+    return out

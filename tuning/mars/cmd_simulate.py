@@ -183,8 +183,9 @@ class SimulateJob(Job):
 
             res = simulate_reference(r0, v0, m0, self.gains, progress=False, **self.sim)
         else:
+            # local campaigns keep their per-case results on disk (flat memory)
             res = campaign.run_campaign(r0, v0, m0, self.gains, progress=progress.live,
-                                        **self.executor, **self.sim)
+                                        spill=not self.executor, **self.executor, **self.sim)
         # convergence measured, never assumed (lgw.sim.mars.converged): the cases (all, or an
         # even spread of a large campaign) flown again finer, every printed number compared;
         # RK4 cases whose outcome changes with the step are refined until it settles
@@ -205,7 +206,10 @@ class SimulateJob(Job):
         def records() -> Any:
             return with_checks(campaign.iter_case_records(res), conv)
 
-        cases = Stream(items=records())
+        def encoded() -> Any:  # the same records as JSON text, a chunk at a time
+            return campaign.CaseJson(res, post=lambda recs: with_checks(recs, conv))
+
+        cases = Stream(encoded=encoded())
         figures = []
         if self.want_figures:
             progress.stage("figures")
@@ -214,7 +218,7 @@ class SimulateJob(Job):
             figures = simulation_figures(self.gains, res, self.sim, self.states)
         head = {"command": "simulate mars", **self.gains.to_dict()}
         files = {"summary.json": json_stream({**head, **summ}, indent=1),
-                 "cases.json": json_stream({**head, "cases": Stream(items=records())}),
+                 "cases.json": json_stream({**head, "cases": Stream(encoded=encoded())}),
                  "cases.csv": Stream(write=lambda f: write_cases_csv(records(), f))}
         return Outcome({"summary": summ, "cases": cases},
                        render=lambda con: _render(res, summ, con, conv), files=files,
@@ -419,11 +423,10 @@ def shown_cases(res: Any, rows: int = PER_CASE_ROWS, conv: Any = None) -> np.nda
 def select_cases(res: Any, idx: np.ndarray) -> list[dict[str, Any]]:
     """``case_records`` of the cases ``idx`` only (their case numbers kept)."""
     from lgw.sim.mars.batch import ARRAY_FIELDS, BatchResult
-    from lgw.sim.mars.campaign import case_records
+    from lgw.sim.mars.campaign import case_records, take
 
-    kw = {k: getattr(res, k)[idx] for k in ARRAY_FIELDS}
-    sub = BatchResult(eps=res.eps, dt=res.dt, r0=res.r0[idx], v0=res.v0[idx], m0=res.m0[idx],
-                      info=res.info, **kw)
+    kw = {k: take(res, k, idx) for k in (*ARRAY_FIELDS, "r0", "v0", "m0")}
+    sub = BatchResult(eps=res.eps, dt=res.dt, info=res.info, **kw)
     sub.info = {k: v for k, v in res.info.items() if k != "refined_dt"}
     recs = case_records(sub)
     refined = res.info.get("refined_dt", {})
