@@ -26,6 +26,9 @@ settings.load_profile("ci" if os.environ.get("CI", "").lower() == "true" else "d
 # Progress lines go to stderr, which click's CliRunner mixes into ``result.output``: the tests
 # read documents from stdout, and the progress tests set LGW_PROGRESS themselves.
 os.environ.setdefault("LGW_PROGRESS", "never")
+# The tests read lgw's output as a pipe or a CI log gets it (lgw.tuning.io.console: PIPE_WIDTH
+# columns); pytest-xdist's workers inherit a COLUMNS of 80 that would wrap tables and paths.
+os.environ.pop("COLUMNS", None)
 
 # The systems' warm-up, in this many groups run side by side (the cold build of mars, with a
 # kernel per law, is about as long as lunar's and eros's together).

@@ -25,6 +25,9 @@ from sympy.printing.mathml import mathml
 
 from tests.test_claims_walk import systems
 
+# with pytest-xdist (--dist loadgroup), on the worker that derives seed 000's claims once
+pytestmark = pytest.mark.xdist_group("mars-claims")
+
 # Claims whose statement is not a formula (or whose formula is not attached yet), per system,
 # each with the reason.  An entry whose claim does render a formula fails the test (stale).
 PROSE_ONLY: dict[str, dict[str, str]] = {

@@ -29,6 +29,9 @@ from lgw.theory.evidence import (
     verdict_of,
 )
 
+# with pytest-xdist (--dist loadgroup), on the worker that derives seed 000's claims once
+pytestmark = pytest.mark.xdist_group("mars-claims")
+
 
 def systems() -> list[str]:
     out = []

@@ -127,6 +127,8 @@ def _block_commands(path: Path, block: list[tuple[int, str]]) -> list[DocCommand
             text += " " + more
             comment = " ".join(x for x in (comment, c) if x)
             j += 1
+        # the shell's part of a line (a redirection, a following command) is not lgw's
+        text = re.split(r"\s(?:\d?>>?|&&|;)\s", text)[0]
         out.append(DocCommand(f"{path.name}:{k}", " ".join(text.split()), comment))
         i = j
     return out

@@ -6,9 +6,13 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
 from lgw.theory.mars.claims import all_claims
 from lgw.theory.mars.coverage import coverage
 from lgw.theory.mars.gains import default_gains
+
+# with pytest-xdist (--dist loadgroup), on the worker that derives seed 000's claims once
+pytestmark = pytest.mark.xdist_group("mars-claims")
 
 # the papers sit in shared/ beside the repository (../shared/seeds from its root)
 SEEDS = Path(__file__).resolve().parents[3] / "shared" / "seeds"

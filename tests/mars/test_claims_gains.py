@@ -12,6 +12,9 @@ from lgw.theory.mars.claims import all_claims, gain_set_claims, general_claims
 from lgw.theory.mars.gains import default_gains, gains_from_toml_text
 from lgw.tuning.cli import cli
 
+# with pytest-xdist (--dist loadgroup), on the worker that derives seed 000's claims once
+pytestmark = pytest.mark.xdist_group("mars-claims")
+
 
 def part1_gains_toml(a_max: float = 35.0) -> str:
     """Gains solved so that (18) = 74.5780 s and (26) = 30.8217 s (seed 000 Part 1), with

@@ -203,6 +203,8 @@ def test_disturbed_landing_sum_survives_full_domain_search():
     assert s.status == "checked", s.witness.to_dict() if s.witness else None
 
 
+@pytest.mark.slow  # the same refutation, at a smaller budget, runs by default:
+# tests/mars/test_searches.py::test_engine_refinds_paper_landing_max_counterexample
 def test_paper_landing_max_is_refuted_by_search():
     """The paper's max{T1 (18), T2 (26)} for the whole landing: the engine finds, from
     scratch, a state and gain set that lands later, re-checked by the reference."""

@@ -15,6 +15,9 @@ from lgw.theory.mars.bounds import axis_bounds, reaching_time, tf_min, tf_min_pr
 from lgw.theory.mars.gains import default_gains, gains_from_dict, gains_from_toml_text
 from lgw.theory.mars.reduced import surface_trajectory, trajectory
 
+# with pytest-xdist (--dist loadgroup), on the worker that derives seed 000's claims once
+pytestmark = pytest.mark.xdist_group("mars-claims")
+
 gain_sets = st.fixed_dictionaries({
     "beta1": st.floats(0.05, 3), "beta2": st.floats(1e-4, 0.5),
     "alpha1": st.floats(0.05, 3), "alpha2": st.floats(1e-4, 0.5),
