@@ -1,4 +1,4 @@
-"""Adversarial campaign for the eros loop (issue 14): counts per outcome, and the cases that
+"""Adversarial campaign for the eros loop: counts per outcome, and the cases that
 break a rule (0 expected for each):
 
   unexplained  a case without exactly one outcome, an outcome time outside [t0, t_final], or

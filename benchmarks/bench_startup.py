@@ -8,7 +8,7 @@ of
   (1) a first ``lgw simulate SYSTEM ...`` (generates the kernel module, numba compiles it and
       stores the machine code): cold;
   (2) the same command again (imports the cached module, loads the machine code): warm;
-and prints cold / warm, which issue 28 aims to be <= 5.  ``lgw --help`` is timed once.  The
+and prints cold / warm, which aims to be <= 5.  ``lgw --help`` is timed once.  The
 machine is shared (other processes compete for the cores): the CPU seconds are the steadier
 number, the wall seconds what a user waits.
 

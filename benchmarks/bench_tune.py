@@ -1,4 +1,4 @@
-"""Benchmark and report for ``lgw tune mars`` (issue 5).
+"""Benchmark and report for ``lgw tune mars``.
 
   python benchmarks/bench_tune.py time        tuner wall time on the default problem
   python benchmarks/bench_tune.py compare     exact vs Polyakov bound: peak thrust and fuel of
@@ -6,7 +6,7 @@
   python benchmarks/bench_tune.py check       tune a few targets (or the nearest feasible tf)
                                                and fly FRESH Table III (50) and Table II (300)
                                                campaigns with another seed than the tuner's
-  python benchmarks/bench_tune.py bounded     issue 17: end-to-end time of ``lgw tune mars --law
+  python benchmarks/bench_tune.py bounded: end-to-end time of ``lgw tune mars --law
                                                bounded`` against today's corrected-law tuner, same
                                                run (ratio); then fresh Table III (500) and Table
                                                II (1000) campaigns with the tuned bounded gains

@@ -1,4 +1,4 @@
-"""Every claim of every system shows its mathematics as formulas (issue 18).
+"""Every claim of every system shows its mathematics as formulas.
 
 A claim renders at least one SymPy formula (its ``paper_expr``, ``derived_expr`` or a step's
 ``expr``) unless it is listed below as prose-only with the reason; every formula prints with
@@ -37,13 +37,13 @@ PROSE_ONLY: dict[str, dict[str, str]] = {
         "thrust-table1-corrected@gains": "peak command of a simulated run against the 50 kN "
                                          "limit: numbers from the scenario",
         "exact-time": "formula not attached yet (theory/mars and settling_proofs are outside "
-                      "the lunar/eros part of issue 18)",
+                      "the lunar/eros part of that work)",
         "plant": "formula not attached yet (theory/mars is outside the lunar/eros part of "
-                 "issue 18)",
+                 "that work)",
         "s2dot": "formula not attached yet (theory/mars is outside the lunar/eros part of "
-                 "issue 18)",
+                 "that work)",
         "bounded-command-corrected": "formula not attached yet (theory/mars is outside the "
-                                     "lunar/eros part of issue 18)",
+                                     "lunar/eros part of that work)",
         # the paper's simulation statements (lgw.theory.mars.scenario_claims)
         "part1-fuel": "fuel of simulated flights against the optimum: numbers",
         "part1-collision": "altitudes of simulated flights: numbers",

@@ -1,4 +1,4 @@
-"""CLI conventions (issue 18): one error style, click.Choice everywhere, defaults and units in
+"""CLI conventions: one error style, click.Choice everywhere, defaults and units in
 the help, one name per concept, tables that never truncate in a pipe.
 
 ``run_lgw`` runs ``lgw`` in-process through ``lgw.tuning.cli.main`` (its error handling, exit

@@ -1,4 +1,4 @@
-"""Fuzzing the command line (issue 14): random bytes, random TOML, random CSV and random option
+"""Fuzzing the command line: random bytes, random TOML, random CSV and random option
 values into every command, in-process through ``lgw.tuning.cli.main``.
 
 Each run must exit 0 or 2; on 2 exactly one line ``error: ...`` on stderr, no traceback, and

@@ -1,4 +1,4 @@
-"""Options and parameter types shared by the subcommands (issue 18: one name, one style).
+"""Options and parameter types shared by the subcommands (one name, one style).
 
 Every numeric option is a ``Number`` or ``Integer``: finite, inside its documented range, or a
 ``ParameterError`` naming the option, the value and the range (one line ``error: ...``, exit 2

@@ -1,4 +1,4 @@
-"""Thrust spikes after arrival, from a recorded trajectory (issue 17).
+"""Thrust spikes after arrival, from a recorded trajectory.
 
 An axis i *arrives* when it first enters its landing band |r_i| <= tol_r (m) and
 |v_i| <= tol_v (m/s) (per axis, the band of seed 000's landing criterion after (14) applied to

@@ -45,7 +45,7 @@ What is recorded per case (``BatchResult``):
     |v_i| <= tol_v, the land_tol of the landing criterion) on, until the case ends (with
     stop="t_max" also after landing); NaN if the axis never enters its band at a node.  A
     node whose command is blown up is not counted (the case ends there: at t = 0 a case
-    that has landed there with such a command).  The spikes after arrival of issue 17;
+    that has landed there with such a command).  The spikes after arrival;
     time_saturated: time with the command limited (on some axis, or on the norm), until the
     outcome: where the limit's margin (|F| before the limit minus the limit), linear between
     the nodes, is > 0 (second order in the step; a left-endpoint count of the nodes was first

@@ -205,7 +205,7 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
             # acceleration a itself, not (m a) / m, which differs from a by an ulp; with a =
             # -g - a_m (the law's limit there, lgw.sim.mars.laws.origin_expr) the sum is
             # exactly 0, so the axis stays at rest instead of drifting into the singular
-            # |s1|^(q1-1) v at s1 = 0 (on z, where g != 0; issue 14)
+            # |s1|^(q1-1) v at s1 = 0 (on z, where g != 0)
             acc = X[9 + ax]
         else:
             acc = X[ax] / m
@@ -401,7 +401,7 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
             # lgw.tuning.mars.design.limit_measure, is defined on them); stage peaks also
             # over every rhs evaluation of this step (X[XPK], X[XPKU]: its trial states and
             # its new node), where near an s1 = 0 crossing the corrected law's singular term
-            # spikes at RK4's trial states (issue 14)
+            # spikes at RK4's trial states
             S[PK + ax] = max(S[PK + ax], abs(XL[ax]))
             S[PKU + ax] = max(S[PKU + ax], abs(XL[3 + ax]))
             S[PKS + ax] = max(S[PKS + ax], abs(XL[ax]), X[XPK + ax])
@@ -467,7 +467,7 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
         if dry_now and not has_landed:  # out of propellant before landing
             # all of it: m = m_dry at the located crossing by definition (the Hermite value
             # there is m_dry to the bisection's 2^-60 of the step, or anything at all if a
-            # blown-up stage command made the interpolant wild: fuel above the load, issue 14)
+            # blown-up stage command made the interpolant wild: fuel above the load)
             fuel[i] = m0[i] - m_dry
         # time saturated: where the limit's margin (|F| before the limit minus the limit),
         # linear between the step's nodes, is > 0, over the part of the step flown (a

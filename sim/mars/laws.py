@@ -366,19 +366,19 @@ def surface_params(g: Gains) -> np.ndarray:
 
 
 
-# --- issue 17: the bounded cascade law (lgw.theory.mars.bounded), gains from [bounded] --------
+# --- the bounded cascade law (lgw.theory.mars.bounded), gains from [bounded] --------
 from lgw.theory.mars import bounded as _bounded  # noqa: E402  (kept with its one registration)
 
 register_law(LawSpec(_bounded.NAME, _bounded.law_bounded, _bounded.PARAMS,
                      lambda g: _bounded.bounded_from_extra(g.extra).params(),
-                     "bounded cascade (issue 17): s = v + psi(r), finite continuous command, "
+                     "bounded cascade: s = v + psi(r), finite continuous command, "
                      "proven time and command bounds; gains from the [bounded] table"))
 
-# issue 17: the saturated-cancellation variant (lgw.theory.mars.bounded.law_bounded_sat), gains
+# the saturated-cancellation variant (lgw.theory.mars.bounded.law_bounded_sat), gains
 # from [bounded-sat]; its box bounds are lgw.theory.mars.bounded_sat.axis_box_bounds_sat.
 from lgw.theory.mars import bounded_sat as _bounded_sat  # noqa: E402
 
 register_law(LawSpec(_bounded_sat.NAME, _bounded.law_bounded_sat, _bounded.PARAMS_SAT,
                      lambda g: _bounded_sat.sat_from_extra(g.extra).params(),
                      "bounded cascade with saturated cancellation psi'(r) sat(v, psi(|r|) + w0) "
-                     "(issue 17): proven box bounds; gains from the [bounded-sat] table"))
+                     ": proven box bounds; gains from the [bounded-sat] table"))

@@ -1,4 +1,4 @@
-"""Adversarial states and gains for the eros loop (issue 14): every case ends in exactly one
+"""Adversarial states and gains for the eros loop: every case ends in exactly one
 outcome with its time, no impossible quantity appears, nothing non-finite goes unflagged, and
 the batched RK4 and the solve_ivp reference agree on the outcome class.
 

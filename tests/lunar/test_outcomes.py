@@ -1,4 +1,4 @@
-"""Honest outcomes of the compiled lunar simulator (issue 14) on adversarial states: initial
+"""Honest outcomes of the compiled lunar simulator on adversarial states: initial
 errors and gains tiny, huge, exactly zero, of mixed signs.
 
 Every case ends in exactly one outcome of ``lgw.sim.lunar.outcomes.OUTCOMES`` with a time in

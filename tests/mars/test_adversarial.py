@@ -1,4 +1,4 @@
-"""Adversarial seed 000 states (issue 14): tiny, huge, exact zeros and sign mixtures.
+"""Adversarial seed 000 states: tiny, huge, exact zeros and sign mixtures.
 
 Every case has exactly one outcome, no impossible quantity (fuel, mass, thrust), no NaN/inf
 unflagged, and RK4 and dopri5 agree on the outcome class except in three kinds, measured on

@@ -1,4 +1,4 @@
-"""``lgw.sim.mars.arrival.after_arrival_peaks`` on a hand-made trajectory (issue 17)."""
+"""``lgw.sim.mars.arrival.after_arrival_peaks`` on a hand-made trajectory."""
 
 from __future__ import annotations
 

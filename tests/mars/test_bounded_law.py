@@ -1,4 +1,4 @@
-"""The bounded cascade law (issue 17): generated code = SymPy, finite everywhere, claims' verdicts,
+"""The bounded cascade law: generated code = SymPy, finite everywhere, claims' verdicts,
 and simulated landings inside the proven bounds."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The saturated-cancellation law ``bounded-sat`` (issue 17): generated code = SymPy, bad gains,
+"""The saturated-cancellation law ``bounded-sat``: generated code = SymPy, bad gains,
 claims' verdicts, and the box bounds of ``axis_box_bounds_sat`` against two independent flights
 (solve_ivp on the SymPy law, and the batch simulator), plus its tuner and fresh campaigns."""
 

@@ -1,4 +1,4 @@
-"""``lgw tune mars --law bounded`` (issue 17): proven certificates, infeasibility, the file."""
+"""``lgw tune mars --law bounded``: proven certificates, infeasibility, the file."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Seed 000 Part 1's comparison (issues 6, 17, 18) and the report that includes it.
+"""Seed 000 Part 1's comparison and the report that includes it.
 
 The rendering tests are structural and fast; one end-to-end run checks the tuned row against
 its own certificate by a fresh simulation, and the report's bytes against a second run."""
@@ -293,7 +293,7 @@ def test_doc_table_comparison_catches_a_change() -> None:
 @pytest.mark.slow  # the full comparison: every law by RK4 and dopri5, ~4 min cold in CI
 def test_optimal_doc_matches_a_fresh_comparison(comparison) -> None:
     """docs/optimal.md's comparison table and the statements it makes about it, against a
-    fresh ``run_comparison`` with the command's defaults (issue 18: they had gone stale)."""
+    fresh ``run_comparison`` with the command's defaults (they had gone stale once)."""
     from lgw.tuning.mars.compare import format_table
 
     rep, _, tuned = comparison

@@ -1,10 +1,10 @@
-"""Seed 000 behaves as before the move into the lgw house (issue 12).
+"""Seed 000 behaves as before the move into the lgw house.
 
 The bounds and simulation files in golden/ were written by the pre-move tree (commit 8ad8a6d)
 with the commands named below; simulation records compare to 1e-12 relative (integrator
 arithmetic may be reordered by a refactor; any larger difference is a behaviour change).
 The report files (report_nocompare.md/.tex/.html/.claims.json) were re-made deliberately in
-issue 13, when every verdict became computed from evidence (new steps, evidence summaries,
+when every verdict became computed from evidence (new steps, evidence summaries,
 witness tables, scope sections, coverage table, gain-set claims, claims.json), and again when
 the verdicts were made to follow the mathematics: the findings page first, the paper's
 statements and the workbench's corrections as separate linked claims, counts of the paper's

@@ -1,4 +1,4 @@
-"""Issue 14's input and output reproductions, one test per defect class: each now gives a named
+"""The input and output reproductions, one test per defect class: each now gives a named
 error (one line ``error: ...``, exit 2, nothing written) or a strict, complete output."""
 
 from __future__ import annotations

@@ -257,7 +257,7 @@ def test_option_objects_give_the_keyword_results() -> None:
 
 @pytest.mark.parametrize("axis", [0, 1, 2])
 def test_axis_at_rest_on_its_target_stays_there(axis: int) -> None:
-    """Issue 14's reproduction: one axis exactly at r = v = 0 (on z the command is -g, and
+    """The reproduction: one axis exactly at r = v = 0 (on z the command is -g, and
     (m a)/m + g is an ulp off 0, which drifted v_z into the singular |s1|^(q1-1) v): RK4,
     dopri5 and the reference all land, and that axis stays exactly at rest."""
     r0 = np.array([-200.0, 1400.0, 900.0])
@@ -277,7 +277,7 @@ def test_axis_at_rest_on_its_target_stays_there(axis: int) -> None:
 @pytest.mark.parametrize("method", ["rk4", "dopri5"])
 def test_fuel_never_exceeds_the_load(method: str) -> None:
     """Running dry ends with exactly m_dry and fuel m0 - m_dry, also when a blown-up stage
-    command makes the step's interpolant wild (issue 14: r_x = 1e-100, v_x = 0 reported
+    command makes the step's interpolant wild (r_x = 1e-100, v_x = 0 reported
     5.2e24 kg of fuel and a negative mass)."""
     r0 = np.array([R0, [1e-100, R0[1], R0[2]]])
     v0 = np.array([V0, [0.0, V0[1], V0[2]]])

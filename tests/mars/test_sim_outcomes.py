@@ -1,5 +1,6 @@
 """Every case ends in exactly one outcome (lgw.sim.results), the same in RK4, dopri5 and the
-reference mode for the same state; issue 14's reproductions, one test per defect class."""
+reference mode for the same state; the reproductions of the input defects, one test per
+defect class."""
 
 from __future__ import annotations
 
@@ -54,7 +55,7 @@ def test_same_outcome_in_every_integrator() -> None:
 
 
 def test_tiny_position_blows_the_command_up_not_the_fuel() -> None:
-    """Issue 14: r_x = 1e-100, v_x = 0 reported "fuel exhausted" after one step with 5.2e24 kg
+    """r_x = 1e-100, v_x = 0 reported "fuel exhausted" after one step with 5.2e24 kg
     of fuel.  The command at t = 0 is finite (v_x = 0), a stage of the first step asks for
     |s1|^(q1-1) v ~ 1e38 N: blown up at the start, nothing impossible reported."""
     r0 = np.array([[1e-100, R0[1], R0[2]]])
@@ -70,7 +71,7 @@ def test_tiny_position_blows_the_command_up_not_the_fuel() -> None:
 
 
 def test_huge_step_is_blown_up() -> None:
-    """Issue 14: ``--dt 100`` on Table I reported 1.7e10 kg of fuel.  The stages of a 100 s
+    """``--dt 100`` on Table I reported 1.7e10 kg of fuel.  The stages of a 100 s
     step ask for commands no thrust can give (or at a mass <= 0): blown up at t = 0."""
     res = simulate_batch(R0[None], V0[None], [M0], G, dt=100.0)
     assert _names(res) == ["command_blown_up"]
@@ -79,7 +80,7 @@ def test_huge_step_is_blown_up() -> None:
 
 
 def test_z_axis_on_its_target_lands_in_every_mode() -> None:
-    """Issue 14's z0.csv: r_z = v_z = 0 went non-finite at 0.25 s (dopri5 0.55 s)."""
+    """The z0.csv: r_z = v_z = 0 went non-finite at 0.25 s (dopri5 0.55 s)."""
     r0 = np.array([[-200.0, 1400.0, 0.0]])
     v0 = np.array([[-15.0, -100.0, 0.0]])
     for res in (simulate_batch(r0, v0, [1905.0], G),
@@ -91,7 +92,7 @@ def test_z_axis_on_its_target_lands_in_every_mode() -> None:
 
 
 def test_all_zero_state_lands_at_once_in_every_mode() -> None:
-    """Issue 14: ``--reference`` reported the all-zero state both landed and non-finite."""
+    """``--reference`` reported the all-zero state both landed and non-finite."""
     z = np.zeros((1, 3))
     for res in (simulate_batch(z, z, [M0], G), simulate_batch(z, z, [M0], G, method="dopri5"),
                 simulate_reference(z, z, [M0], G)):

@@ -1,4 +1,4 @@
-"""Node peaks, stage peaks and the peak after arrival (lgw.sim.mars.batch, issue 14 and 17).
+"""Node peaks, stage peaks and the peak after arrival (lgw.sim.mars.batch).
 
 Each is checked against an independent route: the stage peaks against the RK4 trial states
 re-computed in numpy from the recorded nodes with the reference mode's closed loop

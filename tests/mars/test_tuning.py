@@ -1,6 +1,6 @@
 """Gain design (lgw.tuning.mars.design): the geometric program, its oracle, envelopes and the CLI.
 
-DGP structure is tested before any number (issue 5), and every numeric test compares against
+DGP structure is tested before any number, and every numeric test compares against
 an independent computation (closed form, lgw.theory.mars.bounds, brute force, simulation)."""
 
 from __future__ import annotations

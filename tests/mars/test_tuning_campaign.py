@@ -1,4 +1,4 @@
-"""Tuned gains against simulations the tuner never saw (issue 5's "must show").
+"""Tuned gains against simulations the tuner never saw.
 
 The default-suite test runs the pipeline on one exponent set (GP, worst-case search, certificate
 round trip) and flies a fresh Table III campaign; the slow tests run ``lgw tune mars`` itself

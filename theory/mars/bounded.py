@@ -1,6 +1,6 @@
 """A third guidance law for seed 000's plant: bounded on bounded sets, with explicit time bounds.
 
-Why (issue 17): the printed law (25) has a bounded command but no valid proof; the corrected law
+Why: the printed law (25) has a bounded command but no valid proof; the corrected law
 has a proof but its command -(b1 q1 |s1|^(q1-1) + b2 q2 |s1|^(q2-1)) v is unbounded wherever s1
 crosses 0 with v != 0.  This law keeps a fixed-time sliding loop and removes the singularity by
 putting it in a cascade (per axis i, plant r'' = a + g + a_m + a_p of seed 000 (10), (11), (30)):
@@ -358,7 +358,7 @@ def thrust_bound(bg: BoundedGains, i: int, box: AxisBox, m_max: float, grav_i: f
     return float(m_max * (abs(grav_i) + d["u_b"]) + drag_force_coef * d["V_b"] ** 2)
 
 
-# --- a variant not yet certified: saturated cancellation (issue 17, next step) -------------
+# --- a variant not yet certified: saturated cancellation -------------
 w0 = sp.Symbol("w_0", positive=True)  # m/s, the speed margin of the saturation
 PARAMS_SAT = PARAMS + (w0,)
 

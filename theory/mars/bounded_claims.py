@@ -1,4 +1,4 @@
-"""Claims of the bounded cascade law (issue 17, ``lgw.theory.mars.bounded``), with verdicts.
+"""Claims of the bounded cascade law (``lgw.theory.mars.bounded``), with verdicts.
 
 Every step is computed from the SymPy expressions of ``bounded`` (the law the simulator runs)
 or, for the numeric bounds, checked against an independent route: the per-axis closed loop
@@ -24,6 +24,9 @@ FIXED_TIME_REF = ("Aldana-Lopez, Gomez-Gutierrez et al., IJRNC 29 (2019), exact 
                   "of s' = -k1 sig(s,e1) - k2 sig(s,e2); seed 000 Lemma 2")
 COMPARISON_REF = "Khalil, Nonlinear Systems, 3rd ed., Lemma 3.4 (comparison lemma)"
 
+# the equations field of these claims: the workbench's own laws, not in seed 000
+_EQ = "beyond the paper"
+
 
 def _branches(expr: sp.Expr, sym: sp.Symbol, statement: str) -> list[Step]:
     """expr == 0 on sym > 0 and on sym < 0 (sig and Abs become powers)."""
@@ -46,7 +49,7 @@ def claim_derivative() -> Claim:
     vdot = s * (B.reaching(s) + ap)
     want = -B.k1 * sp.Abs(s) ** (B.e1 + 1) - B.k2 * sp.Abs(s) ** (B.e2 + 1) + s * ap
     steps += _branches(vdot - want, s, "V = s^2/2: V' = -k1|s|^(e1+1) - k2|s|^(e2+1) + s a_p")
-    return Claim("bounded-derivative", "issue 17", "Lyapunov derivative of the bounded law",
+    return Claim("bounded-derivative", _EQ, "Lyapunov derivative of the bounded law",
                  "(not in seed 000)", "V' = -k1|s|^(e1+1) - k2|s|^(e2+1) + s a_p for V = s^2/2, "
                  "s = v + psi(r)", steps, law=LAW,
                  derived_expr=sp.Eq(sp.Symbol("Vdot"), want), statement="workbench")
@@ -73,7 +76,7 @@ def claim_finite() -> Claim:
     for f in sorted(law.atoms(sig), key=sp.default_sort_key):
         steps.append(prove_nonneg(f.args[1], f"sig(., {sp.sstr(f.args[1])}) has a positive "
                                   "exponent: continuous, 0 at 0", strict=True))
-    return Claim("bounded-command-finite", "issue 17", "The bounded law's command is finite and "
+    return Claim("bounded-command-finite", _EQ, "The bounded law's command is finite and "
                  "continuous everywhere", "(not in seed 000)",
                  "no negative power of |r| or |s| occurs; psi'(r) <= c1/sqrt(delta) + "
                  "c2 p2 |r|^(p2-1) is finite at r = 0", steps, law=LAW, statement="workbench")
@@ -94,7 +97,7 @@ def claim_psi_monotone() -> Claim:
              prove_nonneg(B.psi().subs(on_pos) - B.c1 * X / sp.sqrt(B.delta + X),
                           "psi(x) - c1 x/sqrt(delta + x) = c2 x^p2 >= 0"),
              prove_nonneg(sp.diff(B.c2 * X ** B.p2, X), "c2 x^p2 is nondecreasing")]
-    return Claim("bounded-psi-monotone", "issue 17", "Shape of the velocity reference psi",
+    return Claim("bounded-psi-monotone", _EQ, "Shape of the velocity reference psi",
                  "(not in seed 000)", "psi increasing, c1 phi' nonincreasing, psi >= c1 phi",
                  steps, law=LAW, statement="workbench")
 
@@ -113,7 +116,7 @@ def claim_slide_time() -> Claim:
     steps.append(prove_identity(sp.diff(tail, Xb) + 1 / (B.c2 * Xb ** B.p2),
                                 "d/dX X^(1-p2)/(c2 (p2-1)) = -1/(c2 X^p2): the tail beyond X "
                                 "is finite (fixed time from any r)"))
-    return Claim("bounded-slide-time", "issue 17", "Sliding-phase time bound (closed form)",
+    return Claim("bounded-slide-time", _EQ, "Sliding-phase time bound (closed form)",
                  "(not in seed 000)", "T_r <= (F(x0) - F(x1))/c1, F(x) = 2 sqrt(delta+x) + "
                  "sqrt(delta) ln(x/(sqrt(delta+x)+sqrt(delta))^2); from any r: "
                  "<= (F(X)-F(x1))/c1 + X^(1-p2)/(c2(p2-1))", steps, law=LAW,
@@ -189,7 +192,7 @@ def claim_invariants(g=None) -> Claim:
               Step("[claim bounded-slide-time] then |r| reaches rho within T_r",
                    FromClaim(claim_slide_time())),
               _two_phase_step()]
-    return Claim("bounded-invariants", "issue 17", "State, command and time bounds over a box",
+    return Claim("bounded-invariants", _EQ, "State, command and time bounds over a box",
                  "(not in seed 000)", "|r| <= R_b, |v| <= V_b, |a+g+a_m| <= u_b, landing by "
                  "T_s + T_r (lgw.theory.mars.bounded.axis_box_bounds, evaluated in double "
                  f"precision) for the gains of {src}", steps, law=LAW, scope="gain-set",
@@ -367,7 +370,7 @@ def claim_fixed_time() -> Claim:
         Step("[claim bounded-slide-time] then the sliding phase within T_r",
              FromClaim(claim_slide_time())),
     ]
-    return Claim("bounded-fixed-time", "issue 17", "Fixed-time / practical fixed-time landing",
+    return Claim("bounded-fixed-time", _EQ, "Fixed-time / practical fixed-time landing",
                  "(not in seed 000)", "T_land <= T_s* + T_r,global from every state; the "
                  "landing set is |r| <= rho <= 0.1 m, |v| <= psi(rho) + s_nb <= 0.1 m/s "
                  "(practical: r -> 0 only exponentially inside it)", steps, law=LAW,
@@ -412,7 +415,7 @@ def claim_sat_invariance() -> Claim:
             steps.append(prove_identity(sp.simplify(s_b - B.w0), "r < 0, v = W (toward): s = w0"))
             target = -B.k1 * B.w0 ** B.e1 - B.k2 * B.w0 ** B.e2
             steps.append(prove_identity(zdot - target, "... and Z' = -k1 w0^e1 - k2 w0^e2 < 0"))
-    return Claim("bounded-sat-invariance", "issue 17", "Saturated variant: the exact-cancellation "
+    return Claim("bounded-sat-invariance", _EQ, "Saturated variant: the exact-cancellation "
                  "region is forward invariant", "(not in seed 000)", "d(|v| - W(r))/dt < 0 on "
                  "|v| = W(r): once |v| <= psi(|r|) + w0 the variant is the bounded law", steps,
                  law=LAW, statement="workbench")
@@ -453,7 +456,7 @@ def claim_sat_outside() -> Claim:
     steps.append(prove_identity(sp.integrate(vv / D, (vv, w0, v0)) - (v0**2 - w0**2) / (2 * D),
                                 "dr = v dt <= -v dv/D: r moves by <= int_w0^v0 v/D dv = "
                                 "(v0^2 - w0^2)/(2D) while outside"))
-    return Claim("bounded-sat-outside", "issue 17", "Saturated variant: outside the "
+    return Claim("bounded-sat-outside", _EQ, "Saturated variant: outside the "
                  "exact-cancellation region |v| decreases at a rate >= D", "(not in seed 000)",
                  "v > psi(|r|) + w0 implies s > w0 and v' <= -(inf psi'W + k(w0) - a_max): "
                  "T_out <= (v0 - w0)/D, excursion <= (v0^2 - w0^2)/(2D)", steps, law=NAME_SAT,
@@ -484,7 +487,7 @@ def claim_sat_growth() -> Claim:
                       "|s| - psi(|r|), d|s|/dt = -k(|s|) in Omega)",
                       Cited(COMPARISON_REF, "comparison lemma in the variable |s|",
                             tuple(steps))))
-    return Claim("bounded-sat-growth", "issue 17", "Saturated variant: growth of |r| inside "
+    return Claim("bounded-sat-growth", _EQ, "Saturated variant: growth of |r| inside "
                  "the exact-cancellation region", "(not in seed 000)",
                  "|r(t)| <= sup_{y <= R_in} y + G(psi(y), min(S, 2 psi(y) + w0))", steps,
                  law=NAME_SAT, derived_expr=sp.Eq(sp.Symbol("G"), G),
@@ -591,7 +594,7 @@ def claim_sat_bounds(g=None) -> Claim:
                   "T_s(S) from |s| <= S", Cited(FIXED_TIME_REF, "fixed-time settling of the "
                                                 "reaching law", (lemmas[3], hyps[0])))
     steps = [*lemmas, *hyps, settle, _sat_composition_step()]
-    return Claim("bounded-sat-bounds", "issue 17", "Saturated variant: state, command and time "
+    return Claim("bounded-sat-bounds", _EQ, "Saturated variant: state, command and time "
                  "bounds over a box", "(not in seed 000)", "|r| <= R_b, |v| <= V_b, |a+g+a_m| "
                  "<= u_b, landing by T_land (lgw.theory.mars.bounded_sat.axis_box_bounds_sat, "
                  f"evaluated in double precision) for the gains of {src}", steps, law=NAME_SAT,

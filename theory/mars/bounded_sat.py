@@ -1,4 +1,4 @@
-"""The bounded law with saturated cancellation (issue 17): gains, box bounds, thrust bound.
+"""The bounded law with saturated cancellation: gains, box bounds, thrust bound.
 
 The law (``lgw.theory.mars.bounded.law_bounded_sat``), per axis of seed 000's plant (10), (30):
 

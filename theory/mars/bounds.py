@@ -145,7 +145,7 @@ _DEPENDS = (
 
 
 def check_evaluable(g: Gains) -> None:
-    """Range check (issue 14): every bound of ``axis_bounds`` is a finite double for ``g``.
+    """Range check: every bound of ``axis_bounds`` is a finite double for ``g``.
 
     The gain hypotheses (``lgw.theory.mars.gains``) admit values for which the closed forms
     overflow: T1* ~ 1/beta1 is inf for beta1 = 1e-308, the neighbourhood (39) raises

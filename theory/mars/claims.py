@@ -68,7 +68,7 @@ S2 = M.S2  # the second surface as a coordinate
 amax = sp.Symbol("a_max", positive=True)
 th1, th2 = sp.symbols("theta_1 theta_2", positive=True)
 
-# A concrete gain set for counterexamples that need a trajectory (the example of issue 2).
+# A concrete gain set for counterexamples that need a trajectory (the example of).
 EXAMPLE_GAINS = {"beta1": 0.2, "beta2": 0.05, "alpha1": 0.5, "alpha2": 0.1,
                  "q1": 0.7, "q2": 1.3, "g1": 0.7, "g2": 1.3}
 # Rational points for symbolic counterexamples (exact arithmetic).

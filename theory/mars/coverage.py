@@ -149,7 +149,7 @@ COVERAGE: tuple[R, ...] = (
     # --- V, abstract
     R("landing-time bound and maximum landing error computable in advance", "statement",
       ("landing-time", "s1-neighborhood", "T3")),
-    # --- beyond the paper: the workbench's bounded law (lgw.theory.mars.bounded, issue 17)
+    # --- beyond the paper: the workbench's bounded law (lgw.theory.mars.bounded)
     R("bounded law: derivative, finite command, reference shape, sliding time", "workbench law",
       ("bounded-derivative", "bounded-command-finite", "bounded-psi-monotone",
        "bounded-slide-time")),

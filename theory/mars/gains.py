@@ -7,7 +7,7 @@ The valid ranges are the hypotheses of the theorems they feed:
 Per-axis gains are a number (the same on x, y, z) or a list of three; exponents are scalars, as in
 the paper.  Parsing never evaluates user text: values must already be TOML numbers.
 
-Beyond the hypotheses, the closed forms must be evaluable in double precision (issue 14):
+Beyond the hypotheses, the closed forms must be evaluable in double precision:
   q1, g1 <= 1 - EXP_GAP and q2, g2 >= 1 + EXP_GAP: the bounds grow like 1/(1 - q1) and
     1/(q2 - 1), and the exponent is known to 1e-16 absolute, so within EXP_GAP = 1e-9 of 1 the
     bound would carry fewer than 7 correct digits (and one ulp from 1 the Lemma 2 route (18)/(26),

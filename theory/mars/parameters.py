@@ -29,7 +29,7 @@ A_MAX_PAPER = 20.0  # m/s^2, amplitude of (47), seed 000 Part 2
 THETA1_PAPER = 0.2  # seed 000 Part 2
 THETA2_PAPER = 0.1  # seed 000 Part 2
 
-# --- Landing criterion (issue 3 default) ----------------------------------------------------
+# --- Landing criterion (default) ----------------------------------------------------
 LAND_POS_TOL = 0.1  # m, |r| <= this counts as landed
 LAND_VEL_TOL = 0.1  # m/s, |v| <= this counts as landed
 

@@ -1,6 +1,6 @@
 """Gain design for seed 000's corrected guidance: geometric programming + simulated thrust check.
 
-The design problem (issue 5) has two parts of different nature.
+The design problem has two parts of different nature.
 
 Time (proven).  For fixed exponents (q1, q2, g1, g2) the workbench's sound landing-time bound
 per axis is a posynomial in the gains (``lgw.theory.mars.bounds``):

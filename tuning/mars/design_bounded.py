@@ -1,4 +1,4 @@
-"""Gain design for the bounded cascade law (issue 17, ``lgw.theory.mars.bounded``).
+"""Gain design for the bounded cascade law (``lgw.theory.mars.bounded``).
 
 Everything the certificate rests on is closed form: for a box of initial states the law's
 bounds (``lgw.theory.mars.bounded.axis_box_bounds``) give, per axis and for all t >= 0,
