@@ -105,21 +105,18 @@ class Convergence:
     checks: tuple[Check, ...]
     outcome: str
     refined_outcome: str
-    record: SC.ConvergenceRecord | None = field(default=None, compare=False, repr=False)
+    record: SC.ConvergenceRecord = field(compare=False, repr=False)
 
     @property
     def unconverged(self) -> list[Check]:
         if self.outcome != self.refined_outcome:  # numbers of another outcome: not compared
             return [c for c in self.checks if not c.converged]
-        bad = set() if self.record is None else {
-            m.name for m in self.record.metrics.values() if m.unconverged}
+        bad = {m.name for m in self.record.metrics.values() if m.unconverged}
         return [c for c in self.checks if c.name in bad]
 
     @property
     def converged(self) -> bool:
-        if self.record is not None:
-            return self.record.converged
-        return not self.unconverged and self.outcome == self.refined_outcome
+        return self.record.converged
 
     def flags(self, label: str = "") -> list[str]:
         """One warning line per unconverged number (empty when converged)."""
@@ -137,8 +134,7 @@ class Convergence:
     def to_dict(self) -> dict[str, Any]:
         # the shared record's keys (how, base, check, cases, cases_checked, metrics, ...) as
         # every system prints them, then seed 001's own: the steps and each quoted number
-        shared = self.record.to_dict() if self.record is not None else {}
-        return {**shared, "dt": self.dt, "refined_dt": self.refined_dt, "rtol": RTOL,
+        return {**self.record.to_dict(), "dt": self.dt, "refined_dt": self.refined_dt, "rtol": RTOL,
                 "criterion": "|x(dt) - x(dt/k)| <= rtol max(|x(dt/k)|, floor)",
                 "converged": self.converged, "outcome": self.outcome,
                 "refined_outcome": self.refined_outcome,

@@ -241,7 +241,7 @@ def _render(con: Any, ref: Any, opts: Any, sums: list[dict[str, Any]],
     result_table(con, f"convergence: dt = {conv.dt:g} s against dt/4 = {conv.refined_dt:g} s "
                  "(1 % or the floor)", ("number", "dt", "dt/4", "difference", "converged"),
                  crow)
-    for line in conv.record.notes() if conv.record is not None else ():
+    for line in conv.record.notes():
         con.print(line, markup=False)  # the line every system prints
 
 
