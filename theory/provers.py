@@ -155,6 +155,18 @@ def refute_nonneg_at(expr: sp.Expr, point: Mapping[sp.Symbol, Any], statement: s
 
 # --- z3 on polynomial forms ----------------------------------------------------------------
 
+def z3_check(solver) -> str:
+    """``solver.check()`` as "sat", "unsat" or "unknown".  z3 catches Ctrl-C during a check
+    itself and answers "unknown" (reason "interrupted from keyboard"; a timeout's reason is
+    "timeout" or "canceled" and stays "unknown"): that answer is raised as the
+    KeyboardInterrupt it was, never taken for an unproven step of a run that goes on and
+    exits 0."""
+    ans = str(solver.check())
+    if ans == "unknown" and "keyboard" in solver.reason_unknown():
+        raise KeyboardInterrupt
+    return ans
+
+
 def _to_z3(e: sp.Basic, env: dict):
     import z3
 
@@ -216,7 +228,7 @@ def prove_z3(goal: sp.Basic, hypotheses: Iterable[sp.Basic], statement: str, *,
     zg = _to_z3(goal, env)
     s.add(*zh)
     s.add(z3.Not(zg))
-    ans = str(s.check())
+    ans = z3_check(s)
     # the SMT-LIB query, written from the assertions (s.sexpr() also prints solver state
     # that depends on earlier z3 calls in the process, which would make reports unstable)
     query = "\n".join([f"(declare-fun {sym.name} () Real)"
