@@ -725,16 +725,16 @@ def bounded_command_claim(law: str) -> Claim:
                      "reach s1 = 0 on s2 = 0 (v -> 0 with s1) keep it bounded for q1 >= 1/2.",
                      steps, law=law, statement="workbench")
     import z3
+    from lgw.theory.provers import _to_z3, z3_check
 
     exps = command_exponents(M.law(law))
     qs = sorted(set().union(*(e.free_symbols for e in exps)), key=lambda s_: s_.name)
     cond = sp.And(*(sp.GreaterThan(e, 0, evaluate=False) for e in exps))
     hyps = [h for h in M.hypotheses() if h.free_symbols <= set(qs)]
     env: dict = {}
-    from lgw.theory.provers import _to_z3
     solver = z3.Solver()
     solver.add(*(_to_z3(h, env) for h in hyps), _to_z3(cond, env))
-    ans = str(solver.check())
+    ans = z3_check(solver)
     exps_txt = ", ".join(sp.sstr(e) for e in exps)
     if ans == "sat":
         mdl = solver.model()
@@ -1397,15 +1397,40 @@ def tuning_rule_gain_claim(g, tf: float = 30.0) -> Claim:
                  scope="gain-set", numbers=_bound_numbers(g, ("T1_polyakov", "T2_polyakov")))
 
 
+class _GainsKey:
+    """A gain set as a memo key: equal when every value of the file is equal (the arrays,
+    the disturbance and the ``extra`` tables the bounded laws read), as its canonical JSON."""
+
+    def __init__(self, g) -> None:
+        import json
+
+        self.g = g
+        self.text = json.dumps({**g.to_dict(), "extra": g.extra}, sort_keys=True, default=repr)
+
+    def __hash__(self) -> int:
+        return hash(self.text)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _GainsKey) and other.text == self.text
+
+
+@cache
+def _gain_set_claims(key: _GainsKey) -> tuple[Claim, ...]:
+    # memoised per gain set (a report, its JSON and the checks judge the same set more than
+    # once; each judgement flies the thrust scenarios): cleared with the module's caches
+    from lgw.theory.mars import bounded_claims
+
+    g = key.g
+    return (*paper_numbers_gain_claims(g), tuning_rule_gain_claim(g),
+            bounded_command_gain_claim(g), *thrust_gain_claims(g), hypotheses_gain_claim(g),
+            *bounded_claims.gain_set_claims(g))
+
+
 def gain_set_claims(g) -> list[Claim]:
     """Every gain-dependent statement of seed 000 judged for the gain set ``g`` (a
     ``lgw.theory.mars.gains.Gains``): scope "gain-set"; the bounded laws' box bounds are judged
     for the file's ``[bounded]`` and ``[bounded-sat]`` tables."""
-    from lgw.theory.mars import bounded_claims
-
-    return [*paper_numbers_gain_claims(g), tuning_rule_gain_claim(g),
-            bounded_command_gain_claim(g), *thrust_gain_claims(g), hypotheses_gain_claim(g),
-            *bounded_claims.gain_set_claims(g)]
+    return list(_gain_set_claims(_GainsKey(g)))
 
 
 def general_claims() -> list[Claim]:
