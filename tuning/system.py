@@ -177,3 +177,28 @@ def check_consistent(systems: Iterable[System] | None = None) -> list[str]:
 
 def names(items: Sequence[Any]) -> str:
     return ", ".join(str(i) for i in items)
+
+
+WARMUP = Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in one step")
+
+
+def laid_out_system(name: str, seed: str, title: str, summary: str,
+                    **verbs: str | NotApplicable) -> System:
+    """The ``System`` of a system laid out as the workbench lays out every system: its parts
+    at their standard paths (``lgw.tuning.<name>.gainset``, ``lgw.theory.<name>.claims:
+    all_claims``, ``lgw.sim.<name>.interop``, ``lgw.sim.<name>.batch:warmup_kernels``), each
+    verb in ``lgw.tuning.<name>.cmd_<verb>``.  ``verbs``: verb -> its one-line help, or a
+    ``NotApplicable`` with the reason; ``warmup`` is the shared one unless given."""
+    unknown = set(verbs) - set(VERBS)
+    if unknown:
+        raise ParameterError("verbs", ", ".join(sorted(unknown)), f"one of {', '.join(VERBS)}")
+    table: dict[str, Verb | NotApplicable] = {"warmup": WARMUP}
+    for verb, v in verbs.items():
+        table[verb] = v if isinstance(v, NotApplicable) else Verb(
+            f"lgw.tuning.{name}.cmd_{verb}", v)
+    return System(name=name, seed=seed, title=title, summary=summary,
+                  gains=f"lgw.tuning.{name}.gainset",
+                  verbs={verb: table[verb] for verb in VERBS if verb in table},
+                  claims=f"lgw.theory.{name}.claims:all_claims",
+                  interop=f"lgw.sim.{name}.interop",
+                  kernels=f"lgw.sim.{name}.batch:warmup_kernels")
