@@ -16,12 +16,10 @@ import dataclasses
 import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 from lgw.theory.errors import ParameterError
 from lgw.tuning import vocabulary as V
-from lgw.tuning.spec import Options
 from lgw.tuning.system import Job, Outcome, resolve
 
 
@@ -37,13 +35,9 @@ class ReportParts:
 
 
 @dataclass(frozen=True)
-class ReportOptions(Options):
+class ReportOptions(V.Outputs, out="report.md, report.tex, report.html, claims.json and the "
+                                   "figures (needed unless --json)"):
     """The options every ``lgw report SYSTEM`` takes (a system adds its own)."""
-
-    gains: Path | None = V.gains()
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("report.md, report.tex, report.html, claims.json and the "
-                                 "figures (needed unless --json)")
 
     def check(self) -> None:
         super().check()

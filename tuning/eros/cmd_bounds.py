@@ -4,24 +4,20 @@ bound of seed 002 for the scenario's initial error, per axis, for a gain set."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
 from lgw.tuning.options import Number
-from lgw.tuning.spec import Options, option
+from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains()
+class Options(V.BoundsOptions):
     dbar: float = option("--dbar", Number(0, 1e3, unit="m/s^2"), 0.0,
                          "bound on the unknown disturbance |D_i| (m/s^2); 0: D known as in "
                          "(14); must be < k", probe=0.5)
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("bounds.json (the --json document)")
 
 
 @dataclass(frozen=True)

@@ -4,29 +4,25 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
 from lgw.tuning.options import Number
-from lgw.tuning.spec import Options, option
+from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
 
 EQ0_MIN = 1e-3  # linfnorm of the frozen attitude filter fails below ~1e-7 (f1bar ~ 1e-14)
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains()
+class Options(V.BoundsOptions):
     eq0_min: float = option("--eq0-min", Number(EQ0_MIN, 1, unit="quaternion scalar part"),
                             1.0, "smallest |eq0| assumed along the run (attitude f1bar = "
                             "lambda_min(K1) eq0^2/4); the attitude filter is frozen there for "
                             f"its H-infinity gain; >= {EQ0_MIN:g} (an attitude error of "
                             "179.9 degrees): below, the frozen filter's H-infinity norm is "
                             "not computable (f1bar underflows)", probe=0.8)
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("bounds.json (the --json document)")
 
 
 @dataclass(frozen=True)

@@ -8,20 +8,16 @@ law); landing_time_bound_disturbed the sound bound to enter the (31) neighbourho
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
-from lgw.tuning.spec import Options
 from lgw.tuning.system import Job, Outcome
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains()
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("bounds.json (the --json document)")
+class Options(V.BoundsOptions):
+    """--gains, --json, --out: nothing else decides seed 000's bounds."""
 
 
 @dataclass(frozen=True)
