@@ -202,3 +202,17 @@ def laid_out_system(name: str, seed: str, title: str, summary: str,
                   claims=f"lgw.theory.{name}.claims:all_claims",
                   interop=f"lgw.sim.{name}.interop",
                   kernels=f"lgw.sim.{name}.batch:warmup_kernels")
+
+
+@dataclass(frozen=True)
+class Call(Job):
+    """A job that is one call of a system's function: ``fn`` (import path of
+    ``fn(gains, progress, **args) -> Outcome``) with the gain set and the keyword
+    arguments that, beside the gains, decide what is computed."""
+
+    fn: str
+    gains: Any
+    args: Mapping[str, Any] = field(default_factory=dict)
+
+    def run(self, progress: Any) -> Outcome:
+        return resolve(self.fn)(self.gains, progress, **self.args)
