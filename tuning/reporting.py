@@ -37,7 +37,18 @@ class ReportParts:
 @dataclass(frozen=True)
 class ReportOptions(V.Outputs, out="report.md, report.tex, report.html, claims.json and the "
                                    "figures (needed unless --json)"):
-    """The options every ``lgw report SYSTEM`` takes (a system adds its own)."""
+    """The options every ``lgw report SYSTEM`` takes (a system adds its own).  A system gives
+    as keywords of its class statement ``sim``: what --sim/--no-sim flies (declares the
+    toggle, on by default), and ``claim``: a claim id for the options test (declares
+    --claim)."""
+
+    def __init_subclass__(cls, *, sim: str | None = None, claim: str | None = None,
+                          **kw: Any) -> None:
+        super().__init_subclass__(**kw)
+        if sim is not None:
+            V.declare(cls, "sim", "bool", V.sim_toggle(True, sim), first=True)
+        if claim is not None:
+            V.declare(cls, "claim", "tuple", claim_option(claim))
 
     def check(self) -> None:
         super().check()
@@ -101,6 +112,15 @@ class ReportJob(Job):
         counts = statement_counts(claims)
         return Outcome(json.loads(text), render=lambda con: _render(con, counts),
                        files=files)
+
+
+def plan_report(builder: str, inputs: Any, opts: ReportOptions) -> ReportJob:
+    """The job of ``lgw report SYSTEM`` for a system whose report takes --claim: the report's
+    documents when --out is given, only the claims of --claim, and each claim's reproduction
+    command pointing at the --gains file."""
+    return ReportJob(builder, inputs, opts.out is not None, only=tuple(opts.claim),
+                     gains_path="" if opts.gains is None else str(opts.gains),
+                     claim_option=True)
 
 
 def one_claim_command(system: str, claim: Any, gains_path: str = "") -> str:

@@ -20,11 +20,11 @@ FIGURES_NOTE = ("Made by lgw.tuning.mars.figures from the simulator (RK4 at its 
 
 
 @dataclass(frozen=True)
-class Options(ReportOptions):
-    sim: bool = V.sim_toggle(True, "seed 000 Part 1's simulated comparison (lgw compare mars, "
-                             "~20 s) and its figure compare.png, and the claims on the paper's "
-                             "simulations: a search over the gains of (25) it leaves open, "
-                             "each flown on Table I, II and III (~1 min)")
+class Options(ReportOptions,
+              sim="seed 000 Part 1's simulated comparison (lgw compare mars, ~20 s) and its "
+                  "figure compare.png, and the claims on the paper's simulations: a search "
+                  "over the gains of (25) it leaves open, each flown on Table I, II and III "
+                  "(~1 min)"):
     figures: bool | None = option("--figures", None, None, "include the figures (Monte Carlo "
                                   "overlays and dispersions of Figs. 7-8 from a 300-case "
                                   "Table II campaign, settling against s1x(0) beside the "
