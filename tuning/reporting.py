@@ -16,7 +16,7 @@ import dataclasses
 import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 from lgw.theory.errors import ParameterError
 from lgw.tuning import vocabulary as V
@@ -40,7 +40,10 @@ class ReportOptions(V.Outputs, out="report.md, report.tex, report.html, claims.j
     """The options every ``lgw report SYSTEM`` takes (a system adds its own).  A system gives
     as keywords of its class statement ``sim``: what --sim/--no-sim flies (declares the
     toggle, on by default), and ``claim``: a claim id for the options test (declares
-    --claim)."""
+    --claim).  ``NEEDS_SIM``: (option field, why) of the options that only apply with --sim,
+    refused without it."""
+
+    NEEDS_SIM: ClassVar[tuple[tuple[str, str], ...]] = ()
 
     def __init_subclass__(cls, *, sim: str | None = None, claim: str | None = None,
                           **kw: Any) -> None:
@@ -54,6 +57,8 @@ class ReportOptions(V.Outputs, out="report.md, report.tex, report.html, claims.j
         super().check()
         if self.out is None and not self.json:
             raise ParameterError("--out", None, "give --out DIR, --json, or both")
+        for name, why in self.NEEDS_SIM:
+            self.refuse_unless(self.sim, name, f"needs --sim ({why})")
 
 
 @dataclass(frozen=True)

@@ -24,12 +24,9 @@ class Options(ReportOptions, claim="settling-ftsm",
     cases: int = V.cases(100, "Monte Carlo cases for the simulation claims")
     seed: int = V.seed(1, "seed of the campaign")
 
-    def check(self) -> None:
-        super().check()
-        self.refuse_unless(self.sim, "cases", "needs --sim (the campaign is the simulation)")
-        self.refuse_unless(self.sim, "seed", "needs --sim (the campaign is the simulation)")
-        self.refuse_unless(self.sim, "descent", "needs --sim (the descent is one of the "
-                           "simulations)")
+    NEEDS_SIM = (("cases", "the campaign is the simulation"),
+                 ("seed", "the campaign is the simulation"),
+                 ("descent", "the descent is one of the simulations"))
 
 
 @dataclass(frozen=True)

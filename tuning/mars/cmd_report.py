@@ -39,12 +39,13 @@ class Options(ReportOptions,
                           "refuted claim's witness); repeatable", multiple=True,
                           metavar="ID", probe=("T2-printed",))
 
+    NEEDS_SIM = (("tuned", "the tuned sets fly in the comparison and in the search of the "
+                  "paper's simulation claims"),)
+
     def check(self) -> None:
         super().check()
         self.refuse_unless(self.out is not None, "figures", "needs --out (figures are "
                            "written beside the report)")
-        self.refuse_unless(self.sim, "tuned", "needs --sim (the tuned sets fly in the "
-                           "comparison and in the search of the paper's simulation claims)")
 
 
 @dataclass(frozen=True)
