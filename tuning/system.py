@@ -216,3 +216,34 @@ class Call(Job):
 
     def run(self, progress: Any) -> Outcome:
         return resolve(self.fn)(self.gains, progress, **self.args)
+
+
+CARD_KEYS = ("seed", "title", "summary", "verbs", "not_applicable")
+
+
+def carded_system(name: str) -> System:
+    """The ``System`` of ``name`` from its card, ``lgw/tuning/<name>/data/system.toml``: what
+    ``lgw`` shows of the system (``seed``, ``title``, ``summary``, ``[verbs]``: verb -> the
+    one-line help, ``[not_applicable]``: verb -> why), its parts at the standard paths
+    (``laid_out_system``).  The card is prose, read without importing any part."""
+    import tomllib
+    from importlib import resources
+
+    path = resources.files(f"lgw.tuning.{name}").joinpath("data", "system.toml")
+    return system_of_card(name, tomllib.loads(path.read_text("utf-8")),
+                          f"lgw.tuning.{name} data/system.toml")
+
+
+def system_of_card(name: str, card: Mapping[str, Any], where: str) -> System:
+    """The ``System`` a card describes (``carded_system``); ``where`` names the card in the
+    errors: an unknown key, a verb both applicable and not, an unknown verb."""
+    unknown = sorted(set(card) - set(CARD_KEYS))
+    if unknown:
+        raise ParameterError(where, ", ".join(unknown), f"keys are {', '.join(CARD_KEYS)}")
+    verbs: dict[str, str | NotApplicable] = dict(card.get("verbs", {}))
+    for verb, reason in card.get("not_applicable", {}).items():
+        if verb in verbs:
+            raise ParameterError(where, verb, "a verb is either in [verbs] or in "
+                                 "[not_applicable], not both")
+        verbs[verb] = NotApplicable(reason)
+    return laid_out_system(name, card["seed"], card["title"], card["summary"], **verbs)
