@@ -15,6 +15,8 @@ from contextlib import AbstractContextManager, ExitStack, contextmanager
 from dataclasses import dataclass
 from typing import Any
 
+import pytest
+
 
 @dataclass(frozen=True)
 class Mutation:
@@ -86,3 +88,51 @@ def patched(clear: Callable[[], None], *patches: AbstractContextManager[Any]):
             yield
     finally:
         clear()
+
+
+def maker(clear: Callable[[], None]) -> Callable[..., Mutation]:
+    """``m(name, flips, why, *patches)``: a ``Mutation`` whose ``patches`` are in force with
+    the system's caches cleared (``clear``; see ``patched``)."""
+
+    def m(name: str, flips: Mapping[str, str], why: str,
+          *patches: AbstractContextManager[Any]) -> Mutation:
+        return Mutation(name, lambda: patched(clear, *patches), flips, why)
+
+    return m
+
+
+class MutationSuite:
+    """The tests of a system's mutation table, written once.  A system's test module
+    subclasses it (``class TestMutations(MutationSuite)``) and sets ``compute`` (every claim
+    of the system, a staticmethod), ``clear`` (its caches), ``mutations`` and ``default``
+    (the index of a cheap mutation: the default suite runs it, the slow profile all)."""
+
+    compute: Callable[[], Iterable[Any]]
+    clear: Callable[[], None]
+    mutations: tuple[Mutation, ...] = ()
+    default: int = 0
+
+    def pytest_generate_tests(self, metafunc: pytest.Metafunc) -> None:
+        if "mutation" in metafunc.fixturenames:
+            metafunc.parametrize("mutation", self.mutations,
+                                 ids=[m.name for m in self.mutations])
+
+    @pytest.fixture(scope="class")
+    @classmethod
+    def base(cls) -> dict[str, str]:
+        cls.clear()
+        return verdicts(cls.compute())
+
+    @pytest.mark.slow
+    def test_mutation_flips_exactly_the_expected_verdicts(self, base, mutation) -> None:
+        check_mutation(self.compute, mutation, base)
+
+    def test_one_mutation_in_the_default_suite(self, base) -> None:
+        check_mutation(self.compute, self.mutations[self.default], base)
+
+    def test_at_least_six_mutations_across_laws_bounds_and_constants(self, base) -> None:
+        kinds = {m.name.split(":")[0] for m in self.mutations}
+        assert len(self.mutations) >= 6 and {"law", "bound", "model constant"} <= kinds
+        assert all(m.flips and m.why for m in self.mutations)
+        assert all(set(m.flips) <= set(base) for m in self.mutations), \
+            [sorted(set(m.flips) - set(base)) for m in self.mutations]

@@ -104,6 +104,9 @@ NOTATION = ("Notation in the formulas: the signed power |x|^q sgn(x) of the pape
             "i is dropped in per-axis formulas.")
 
 
+NOT_CHECKABLE = "not checkable, because "
+
+
 @dataclass(frozen=True)
 class CoverageRow:
     """One item of a paper (equation, definition, hypothesis, lemma, theorem, remark or
@@ -115,8 +118,15 @@ class CoverageRow:
     not_checkable: str = ""
 
     def text(self) -> str:
-        return ", ".join(self.claims) if self.claims else "not checkable, because " + \
-            self.not_checkable
+        return ", ".join(self.claims) if self.claims else NOT_CHECKABLE + self.not_checkable
+
+    @classmethod
+    def of(cls, item: str, kind: str, claims: Sequence[str], note: str) -> CoverageRow:
+        """The row of a system's coverage table entry: its claims, or (none) the note saying
+        why it is not checkable (written ``"not checkable, because ..."``)."""
+        if claims:
+            return cls(item, kind, tuple(claims))
+        return cls(item, kind, (), note.removeprefix(NOT_CHECKABLE))
 
 
 def verdict_counts(claims: Sequence[Claim], statement: str | None = "paper") -> dict[str, int]:

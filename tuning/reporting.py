@@ -16,12 +16,10 @@ import dataclasses
 import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 from lgw.theory.errors import ParameterError
 from lgw.tuning import vocabulary as V
-from lgw.tuning.spec import Options
 from lgw.tuning.system import Job, Outcome, resolve
 
 
@@ -37,18 +35,30 @@ class ReportParts:
 
 
 @dataclass(frozen=True)
-class ReportOptions(Options):
-    """The options every ``lgw report SYSTEM`` takes (a system adds its own)."""
+class ReportOptions(V.Outputs, out="report.md, report.tex, report.html, claims.json and the "
+                                   "figures (needed unless --json)"):
+    """The options every ``lgw report SYSTEM`` takes (a system adds its own).  A system gives
+    as keywords of its class statement ``sim``: what --sim/--no-sim flies (declares the
+    toggle, on by default), and ``claim``: a claim id for the options test (declares
+    --claim).  ``NEEDS_SIM``: (option field, why) of the options that only apply with --sim,
+    refused without it."""
 
-    gains: Path | None = V.gains()
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("report.md, report.tex, report.html, claims.json and the "
-                                 "figures (needed unless --json)")
+    NEEDS_SIM: ClassVar[tuple[tuple[str, str], ...]] = ()
+
+    def __init_subclass__(cls, *, sim: str | None = None, claim: str | None = None,
+                          **kw: Any) -> None:
+        super().__init_subclass__(**kw)
+        if sim is not None:
+            V.declare(cls, "sim", "bool", V.sim_toggle(True, sim), first=True)
+        if claim is not None:
+            V.declare(cls, "claim", "tuple", claim_option(claim))
 
     def check(self) -> None:
         super().check()
         if self.out is None and not self.json:
             raise ParameterError("--out", None, "give --out DIR, --json, or both")
+        for name, why in self.NEEDS_SIM:
+            self.refuse_unless(self.sim, name, f"needs --sim ({why})")
 
 
 @dataclass(frozen=True)
@@ -107,6 +117,15 @@ class ReportJob(Job):
         counts = statement_counts(claims)
         return Outcome(json.loads(text), render=lambda con: _render(con, counts),
                        files=files)
+
+
+def plan_report(builder: str, inputs: Any, opts: ReportOptions) -> ReportJob:
+    """The job of ``lgw report SYSTEM`` for a system whose report takes --claim: the report's
+    documents when --out is given, only the claims of --claim, and each claim's reproduction
+    command pointing at the --gains file."""
+    return ReportJob(builder, inputs, opts.out is not None, only=tuple(opts.claim),
+                     gains_path="" if opts.gains is None else str(opts.gains),
+                     claim_option=True)
 
 
 def one_claim_command(system: str, claim: Any, gains_path: str = "") -> str:

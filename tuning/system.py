@@ -177,3 +177,73 @@ def check_consistent(systems: Iterable[System] | None = None) -> list[str]:
 
 def names(items: Sequence[Any]) -> str:
     return ", ".join(str(i) for i in items)
+
+
+WARMUP = Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in one step")
+
+
+def laid_out_system(name: str, seed: str, title: str, summary: str,
+                    **verbs: str | NotApplicable) -> System:
+    """The ``System`` of a system laid out as the workbench lays out every system: its parts
+    at their standard paths (``lgw.tuning.<name>.gainset``, ``lgw.theory.<name>.claims:
+    all_claims``, ``lgw.sim.<name>.interop``, ``lgw.sim.<name>.batch:warmup_kernels``), each
+    verb in ``lgw.tuning.<name>.cmd_<verb>``.  ``verbs``: verb -> its one-line help, or a
+    ``NotApplicable`` with the reason; ``warmup`` is the shared one unless given."""
+    unknown = set(verbs) - set(VERBS)
+    if unknown:
+        raise ParameterError("verbs", ", ".join(sorted(unknown)), f"one of {', '.join(VERBS)}")
+    table: dict[str, Verb | NotApplicable] = {"warmup": WARMUP}
+    for verb, v in verbs.items():
+        table[verb] = v if isinstance(v, NotApplicable) else Verb(
+            f"lgw.tuning.{name}.cmd_{verb}", v)
+    return System(name=name, seed=seed, title=title, summary=summary,
+                  gains=f"lgw.tuning.{name}.gainset",
+                  verbs={verb: table[verb] for verb in VERBS if verb in table},
+                  claims=f"lgw.theory.{name}.claims:all_claims",
+                  interop=f"lgw.sim.{name}.interop",
+                  kernels=f"lgw.sim.{name}.batch:warmup_kernels")
+
+
+@dataclass(frozen=True)
+class Call(Job):
+    """A job that is one call of a system's function: ``fn`` (import path of
+    ``fn(gains, progress, **args) -> Outcome``) with the gain set and the keyword
+    arguments that, beside the gains, decide what is computed."""
+
+    fn: str
+    gains: Any
+    args: Mapping[str, Any] = field(default_factory=dict)
+
+    def run(self, progress: Any) -> Outcome:
+        return resolve(self.fn)(self.gains, progress, **self.args)
+
+
+CARD_KEYS = ("seed", "title", "summary", "verbs", "not_applicable")
+
+
+def carded_system(name: str) -> System:
+    """The ``System`` of ``name`` from its card, ``lgw/tuning/<name>/data/system.toml``: what
+    ``lgw`` shows of the system (``seed``, ``title``, ``summary``, ``[verbs]``: verb -> the
+    one-line help, ``[not_applicable]``: verb -> why), its parts at the standard paths
+    (``laid_out_system``).  The card is prose, read without importing any part."""
+    import tomllib
+    from importlib import resources
+
+    path = resources.files(f"lgw.tuning.{name}").joinpath("data", "system.toml")
+    return system_of_card(name, tomllib.loads(path.read_text("utf-8")),
+                          f"lgw.tuning.{name} data/system.toml")
+
+
+def system_of_card(name: str, card: Mapping[str, Any], where: str) -> System:
+    """The ``System`` a card describes (``carded_system``); ``where`` names the card in the
+    errors: an unknown key, a verb both applicable and not, an unknown verb."""
+    unknown = sorted(set(card) - set(CARD_KEYS))
+    if unknown:
+        raise ParameterError(where, ", ".join(unknown), f"keys are {', '.join(CARD_KEYS)}")
+    verbs: dict[str, str | NotApplicable] = dict(card.get("verbs", {}))
+    for verb, reason in card.get("not_applicable", {}).items():
+        if verb in verbs:
+            raise ParameterError(where, verb, "a verb is either in [verbs] or in "
+                                 "[not_applicable], not both")
+        verbs[verb] = NotApplicable(reason)
+    return laid_out_system(name, card["seed"], card["title"], card["summary"], **verbs)

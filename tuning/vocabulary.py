@@ -182,3 +182,47 @@ class VerifyRun(Options):
 
     def scale_map(self) -> dict[str, float]:
         return dict(self.scale)
+
+
+def declare(cls: type, name: str, annotation: str, value: Any, *, first: bool = False) -> None:
+    """Declare option field ``name`` in the class body of ``cls`` (before ``@dataclass``
+    runs): a field already declared by a base keeps its place; a new one goes last, or first
+    of the class's own fields with ``first``."""
+    own = dict(cls.__dict__.get("__annotations__", {}))
+    own.pop(name, None)
+    cls.__annotations__ = {name: annotation, **own} if first else {**own, name: annotation}
+    setattr(cls, name, value)
+
+
+@dataclass(frozen=True)
+class Outputs(Options):
+    """--gains, --json and --out, declared once for every verb that computes for a gain set
+    and writes what it computed, and --plot where the verb draws.  What differs between verbs
+    and systems is only text, given as keywords of the class statement::
+
+        @dataclass(frozen=True)
+        class Options(V.Outputs, out="bounds.json (the --json document)"): ...
+
+    ``out``: the files --out holds (declares --out); ``plot``: the figures (declares
+    --plot); ``gains``: the end of --gains' help."""
+
+    gains: Path | None = gains()
+    json: bool = json_flag()
+
+    def __init_subclass__(cls, *, out: str | None = None, plot: str | None = None,
+                          gains: str | None = None, **kw: Any) -> None:
+        super().__init_subclass__(**kw)
+        if gains is not None:
+            declare(cls, "gains", "Path | None", _gains(gains))
+        if out is not None:
+            declare(cls, "out", "Path | None", out_dir(out))
+        if plot is not None:
+            declare(cls, "plot", "Path | None", plot_dir(plot))
+
+
+_gains = gains
+
+
+@dataclass(frozen=True)
+class BoundsOptions(Outputs, out="bounds.json (the --json document)"):
+    """The options every ``lgw bounds SYSTEM`` takes (a system adds its own)."""

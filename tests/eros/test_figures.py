@@ -2,10 +2,7 @@
 report's table, and ``lgw report eros`` embedding them in its HTML as data URIs (a small
 campaign)."""
 
-import base64
-import io
 import json
-import re
 from dataclasses import replace
 
 import numpy as np
@@ -17,32 +14,19 @@ from lgw.tuning.eros import figures as F
 from lgw.tuning.eros.options import resolve_gains
 from lgw.tuning.system import get_system
 
-PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+from tests.figures import PNG_SIGNATURE, assert_deterministic_pngs, assert_report_embeds
+
 FILES = ("eros_tracking.png", "eros_control.png", "eros_chatter.png", "eros_mc_times.png")
 SHORT = SimOptions(t_final=3.0)  # s: the variants' first seconds (reaching, first chattering)
 
 report_command = make_command(get_system("eros"), "report")
 
 
-def _decode(png: bytes) -> np.ndarray:
-    import matplotlib.image as mpimg
-
-    return mpimg.imread(io.BytesIO(png), format="png")
-
-
 def test_figures_are_valid_deterministic_pngs():
     g = resolve_gains(None)
     mc = monte_carlo(g, 5, 3, SHORT)
     figs = F.report_figures(g, SHORT, mc, 5, 3)
-    again = F.report_figures(g, SHORT, mc, 5, 3)
-    assert tuple(f.file for f in figs) == FILES
-    for f, h in zip(figs, again, strict=True):
-        assert f.png.startswith(PNG_SIGNATURE), f.file
-        img = _decode(f.png)
-        assert img.ndim == 3 and img.shape[0] > 300 and img.shape[1] > 700, f.file
-        assert img.std() > 0.01, f.file  # not a blank canvas
-        assert f.png == h.png, f"{f.file}: not the same bytes twice"
-        assert f.caption == h.caption
+    assert_deterministic_pngs(figs, F.report_figures(g, SHORT, mc, 5, 3), FILES, (300, 700))
 
 
 def test_chatter_bars_are_the_tables_numbers():
@@ -67,15 +51,7 @@ def test_report_embeds_the_figures(tmp_path, monkeypatch):
     r = CliRunner().invoke(report_command, ["--out", str(tmp_path), "--cases", "3",
                                             "--no-descent"])
     assert r.exit_code == 0, r.output
-    html = (tmp_path / "report.html").read_text()
-    embedded = {base64.b64decode(u) for u in
-                re.findall(r"src='data:image/png;base64,([A-Za-z0-9+/=]+)'", html)}
-    for name in FILES:
-        png = (tmp_path / name).read_bytes()
-        assert png.startswith(PNG_SIGNATURE)
-        assert png in embedded, name
-        assert name in r.output
-    assert "http:" not in html and "https:" not in html
+    assert_report_embeds(tmp_path, FILES, r.output)
 
 
 def test_simulate_plot_writes_the_figures(tmp_path):

@@ -10,14 +10,13 @@ from __future__ import annotations
 
 from unittest import mock
 
-import pytest
 import sympy as sp
 from lgw.theory.eros import bounds as B
 from lgw.theory.eros import laws as L
 from lgw.theory.eros import parameters as P
 from lgw.theory.eros.claims import all_claims, clear_caches
 
-from tests.mutation import Mutation, check_mutation, patched, verdicts
+from tests.mutation import MutationSuite, maker
 
 
 def _tsm_printed_as_derived(e0, beta, p, q):
@@ -37,10 +36,7 @@ def _weights_b_one(d=L.dist):
     return sp.exp(-L.N * d), sp.Integer(1)  # b(D) = 1: the switching term never blended out
 
 
-def _m(name, flips, why, *patches) -> Mutation:
-    return Mutation(name, lambda: patched(clear_caches, *patches), flips, why)
-
-
+_m = maker(clear_caches)
 MUTATIONS = (
     _m("bound: the printed (5) settling time made the derived one",
        {"settling-tsm": "checked", "growth-e0": "checked"},
@@ -73,25 +69,8 @@ MUTATIONS = (
 )
 
 
-@pytest.fixture(scope="module")
-def base() -> dict[str, str]:
-    clear_caches()
-    return verdicts(all_claims())
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("mutation", MUTATIONS, ids=[m.name for m in MUTATIONS])
-def test_mutation_flips_exactly_the_expected_verdicts(base, mutation):
-    check_mutation(all_claims, mutation, base)
-
-
-def test_one_mutation_in_the_default_suite(base):
-    """The sampling-time mutation (no new SymPy derivation) in the default suite; the others
-    run in the slow profile."""
-    check_mutation(all_claims, MUTATIONS[4], base)
-
-
-def test_at_least_six_mutations_across_laws_bounds_and_constants():
-    kinds = {m.name.split(":")[0] for m in MUTATIONS}
-    assert len(MUTATIONS) >= 6 and {"law", "bound", "model constant"} <= kinds
-    assert all(m.flips and m.why for m in MUTATIONS)
+class TestMutations(MutationSuite):
+    compute = staticmethod(all_claims)
+    clear = staticmethod(clear_caches)
+    mutations = MUTATIONS
+    default = 4  # the sampling time: no new SymPy derivation

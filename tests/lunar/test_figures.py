@@ -2,10 +2,7 @@
 as data URIs and written beside the report.  Small runs: the Section 5 case cut to
 ``T_END`` seconds with the failure at ``T_FAIL`` (the report's own runs take minutes)."""
 
-import base64
 import dataclasses
-import io
-import re
 from functools import cache
 
 import numpy as np
@@ -19,8 +16,9 @@ from lgw.tuning.commands import make_command
 from lgw.tuning.lunar import figures as F
 from lgw.tuning.system import get_system
 
+from tests.figures import PNG_SIGNATURE, assert_deterministic_pngs, assert_report_embeds
+
 T_END, T_FAIL = 10.0, 4.0  # s (the failure mid-run; long enough to see the transient settle)
-PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 FILES = ("lunar_tracking.png", "lunar_thrust.png", "lunar_d0e.png", "lunar_lyapunov.png")
 REPORT_FILES = (*FILES, "lunar_bandwidth.png")
 
@@ -37,24 +35,12 @@ def short_run(pointing: str = "coupled", dt: float = P.DT):
     return rk4_batch(ctx, X0, record_every=2), ctx
 
 
-def _decode(png: bytes) -> np.ndarray:
-    import matplotlib.image as mpimg
-
-    return mpimg.imread(io.BytesIO(png), format="png")
-
-
 def test_figures_are_valid_deterministic_pngs():
     res, ctx = short_run()
     figs = F.report_figures(res, ctx, short_run("ideal"))
-    again = F.report_figures(res, ctx, short_run("ideal"))
-    assert tuple(f.file for f in figs) == FILES
-    for f, g in zip(figs, again, strict=True):
-        assert f.png.startswith(PNG_SIGNATURE), f.file
-        img = _decode(f.png)
-        assert img.ndim == 3 and img.shape[0] > 300 and img.shape[1] > 800, f.file
-        assert img.std() > 0.01, f.file  # not a blank canvas
-        assert f.png == g.png, f"{f.file}: not the same bytes twice"
-        assert f.caption == g.caption and "dt = 0.05 s" in f.caption
+    assert_deterministic_pngs(figs, F.report_figures(res, ctx, short_run("ideal")), FILES,
+                              (300, 800))
+    assert all("dt = 0.05 s" in f.caption for f in figs)
 
 
 def test_v2_is_the_parts_plus_the_estimation_term():
@@ -86,16 +72,7 @@ def test_report_embeds_the_figures(tmp_path, monkeypatch):
     monkeypatch.setattr(D, "WN_GRID", (25.0, 30.0))  # the sweep: two full runs per wn
     r = CliRunner().invoke(report_command, ["--out", str(tmp_path)])
     assert r.exit_code == 0, r.output
-    html = (tmp_path / "report.html").read_text()
-    uris = re.findall(r"src='data:image/png;base64,([A-Za-z0-9+/=]+)'", html)
-    embedded = {base64.b64decode(u) for u in uris}
-    for name in REPORT_FILES:
-        png = (tmp_path / name).read_bytes()
-        assert png.startswith(PNG_SIGNATURE)
-        assert png in embedded, name
-        assert name in r.output
-    assert len(uris) == len(REPORT_FILES)
-    assert "http:" not in html and "https:" not in html
+    assert len(assert_report_embeds(tmp_path, REPORT_FILES, r.output)) == len(REPORT_FILES)
     md = (tmp_path / "report.md").read_text()
     assert all(f"]({name})" in md for name in REPORT_FILES)
 

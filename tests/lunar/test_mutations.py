@@ -10,8 +10,6 @@ from __future__ import annotations
 
 from unittest import mock
 
-import numpy as np
-import pytest
 import sympy as sp
 from lgw.theory.lunar import bounds as B
 from lgw.theory.lunar import gains as G
@@ -19,7 +17,7 @@ from lgw.theory.lunar import law as L
 from lgw.theory.lunar import parameters as P
 from lgw.theory.lunar.claims import clear_caches, theory_claims
 
-from tests.mutation import Mutation, check_mutation, patched, verdicts
+from tests.mutation import MutationSuite, maker
 
 
 def _orbit_f1_up(full: bool = False) -> L.GeneralSystem:
@@ -58,10 +56,7 @@ def _make_loop_unchecked(loop: str, d: dict) -> G.LoopGains:
                        float(d["f3"]), float(d["d0e0"]), float(d["q"]))
 
 
-def _m(name, flips, why, *patches) -> Mutation:
-    return Mutation(name, lambda: patched(clear_caches, *patches), flips, why)
-
-
+_m = maker(clear_caches)
 MUTATIONS = (
     _m("law: the command (7) without its adaptive term Phi",
        {"V2dot-bound": "refuted", "smooth-7": "proved", "B0-rank": "refuted",
@@ -104,26 +99,8 @@ MUTATIONS = (
 )
 
 
-@pytest.fixture(scope="module")
-def base() -> dict[str, str]:
-    clear_caches()
-    return verdicts(theory_claims())
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("mutation", MUTATIONS, ids=[m.name for m in MUTATIONS])
-def test_mutation_flips_exactly_the_expected_verdicts(base, mutation):
-    check_mutation(theory_claims, mutation, base)
-
-
-def test_one_mutation_in_the_default_suite(base):
-    """The printed-(19)-(20) mutation (cheap: no new SymPy derivation) in the default suite;
-    the others run in the slow profile."""
-    check_mutation(theory_claims, MUTATIONS[1], base)
-
-
-def test_at_least_six_mutations_across_laws_bounds_and_constants():
-    kinds = {m.name.split(":")[0] for m in MUTATIONS}
-    assert len(MUTATIONS) >= 6 and {"law", "bound", "model constant"} <= kinds
-    assert all(m.flips and m.why for m in MUTATIONS)
-    assert np.all([set(m.flips) <= set(verdicts(theory_claims())) for m in MUTATIONS])
+class TestMutations(MutationSuite):
+    compute = staticmethod(theory_claims)
+    clear = staticmethod(clear_caches)
+    mutations = MUTATIONS
+    default = 1  # the printed (19)-(20): cheap, no new SymPy derivation

@@ -75,10 +75,7 @@ def report_spec(g: Gains, bounds: dict[str, dict[str, float]]) -> ReportSpec:
 
 def coverage_rows() -> list[R.CoverageRow]:
     """The coverage table of ``lgw.theory.eros.coverage`` as the shared renderer's rows."""
-    row = R.CoverageRow
-    return [row(item, what, ids) if ids else
-            row(item, what, (), note.removeprefix("not checkable, because "))
-            for item, what, ids, note in COVERAGE]
+    return [R.CoverageRow.of(item, what, ids, note) for item, what, ids, note in COVERAGE]
 
 
 def render_documents(claims: Sequence[Claim], spec: ReportSpec,

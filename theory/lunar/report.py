@@ -38,9 +38,7 @@ BOUND_LABELS = (
 def coverage_rows() -> tuple[CoverageRow, ...]:
     """The coverage table of seed 001 (``lgw.theory.lunar.coverage.COVERAGE``) as the shared
     renderer's rows: every numbered item with its claims, or why it is not checkable."""
-    return tuple(CoverageRow(item, "item", tuple(ids)) if ids else
-                 CoverageRow(item, "item", (), note.removeprefix("not checkable, because "))
-                 for item, ids, note in COVERAGE)
+    return tuple(CoverageRow.of(item, "item", ids, note) for item, ids, note in COVERAGE)
 
 
 def gain_rows(g: Gains) -> tuple[tuple[str, str], ...]:

@@ -8,28 +8,23 @@ per switching function, every metric checked against the kernel's dopri5 referen
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
 from lgw.tuning.options import choice
-from lgw.tuning.spec import Options, option
+from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains()
+class Options(V.Outputs, out="compare.json (the --json document) and the figures",
+              plot="eros_table2.png (absolute error, tracked time, chattering against the "
+                   "printed values) and the variants' tracking errors and control"):
     disturbance: str = option("--disturbance", choice(("known", "unknown", "none")), "known",
                               "known (D in u_eq, (14)), unknown (bounded, not in u_eq) or none")
     cubic: str = option("--cubic", choice(("exact", "printed")), "exact",
                         "reference cubic (8)-(10): the exact coefficients or the printed ones")
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("compare.json (the --json document) and the figures")
-    plot: Path | None = V.plot_dir("eros_table2.png (absolute error, tracked time, chattering "
-                                   "against the printed values) and the variants' tracking "
-                                   "errors and control")
 
 
 @dataclass(frozen=True)

@@ -8,30 +8,25 @@ from dataclasses import dataclass
 from typing import Any
 
 from lgw.tuning import vocabulary as V
-from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts, claim_option
+from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts, plan_report
 from lgw.tuning.spec import option
 
 
 @dataclass(frozen=True)
-class Options(ReportOptions):
-    sim: bool = V.sim_toggle(True, "the scenario and a campaign: the paper's simulation "
-                             "claims and the figures (the six variants' tracking errors, "
-                             "control and chattering; the campaign's reaching and tracked "
-                             "times), and the whole descent to touchdown")
+class Options(ReportOptions, claim="settling-ftsm",
+              sim="the scenario and a campaign: the paper's simulation claims and the figures "
+                  "(the six variants' tracking errors, control and chattering; the campaign's "
+                  "reaching and tracked times), and the whole descent to touchdown"):
     descent: bool = option("--descent", None, True, "with --sim: the whole descent from Table "
                            "1's start to touchdown (six variants, with and without navigation "
                            "errors; about a minute), its figures and claim gravity-scope",
                            secondary="--no-descent")
     cases: int = V.cases(100, "Monte Carlo cases for the simulation claims")
     seed: int = V.seed(1, "seed of the campaign")
-    claim: tuple = claim_option("settling-ftsm")
 
-    def check(self) -> None:
-        super().check()
-        self.refuse_unless(self.sim, "cases", "needs --sim (the campaign is the simulation)")
-        self.refuse_unless(self.sim, "seed", "needs --sim (the campaign is the simulation)")
-        self.refuse_unless(self.sim, "descent", "needs --sim (the descent is one of the "
-                           "simulations)")
+    NEEDS_SIM = (("cases", "the campaign is the simulation"),
+                 ("seed", "the campaign is the simulation"),
+                 ("descent", "the descent is one of the simulations"))
 
 
 @dataclass(frozen=True)
@@ -85,8 +80,5 @@ def plan(opts: Options, system: Any) -> ReportJob:
         from lgw.tuning.io import check_memory
 
         check_memory("--cases", opts.cases, case_bytes(P.T_SCENARIO, P.DT_SAMPLE))
-    return ReportJob("lgw.tuning.eros.cmd_report:parts",
-                     Inputs(g, opts.sim, opts.cases, opts.seed, opts.descent),
-                     opts.out is not None, only=tuple(opts.claim),
-                     gains_path="" if opts.gains is None else str(opts.gains),
-                     claim_option=True)
+    return plan_report("lgw.tuning.eros.cmd_report:parts",
+                       Inputs(g, opts.sim, opts.cases, opts.seed, opts.descent), opts)

@@ -26,7 +26,7 @@ import numpy as np
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
 from lgw.tuning.options import Number, choice
-from lgw.tuning.spec import Options, option
+from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
 
 VARIANT_NAMES = ("pdsmc-sign", "pdsmc-tanh", "ftsmc-sign", "ftsmc-tanh", "fuzzy-sign",
@@ -53,9 +53,14 @@ def case_bytes(t_max: float, dt: float) -> float:
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains("[default: the paper scenario's defaults; the descent's own "
-                                 "for --scenario descent]")
+class Options(V.Outputs,
+              gains="[default: the paper scenario's defaults; the descent's own for "
+                    "--scenario descent]",
+              out="simulate.json (the --json document)",
+              plot="the variants' tracking errors per axis, control and chattering (case 0); "
+                   "a campaign: also the reaching and tracked times of every case; the "
+                   "descent: trajectory over the shape model, altitude and speed, thrust "
+                   "against its limit"):
     scenario: str = option("--scenario", choice(SCENARIOS), "tracking",
                            "tracking: the paper's 15 s run; descent: the whole descent from "
                            "Table 1's start to touchdown on the shape model")
@@ -94,13 +99,6 @@ class Options(Options):
                                "descent only: solar radiation pressure, m/s^2 [default: 7.3e-8]")
     nav: bool = option("--nav", None, False, "descent only: navigation errors (Gauss-Markov, "
                        "1 m / 5 mm/s, 100 s) in what the controller sees", secondary="--no-nav")
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("simulate.json (the --json document)")
-    plot: Path | None = V.plot_dir("the variants' tracking errors per axis, control and "
-                                   "chattering (case 0); a campaign: also the reaching and "
-                                   "tracked times of every case; the descent: trajectory over "
-                                   "the shape model, altitude and speed, thrust against its "
-                                   "limit")
 
     def check(self) -> None:
         super().check()

@@ -4,46 +4,38 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
 from lgw.tuning.options import Number
-from lgw.tuning.spec import Options, option
-from lgw.tuning.system import Job, Outcome
+from lgw.tuning.spec import option
+from lgw.tuning.system import Call, Outcome
 
 EQ0_MIN = 1e-3  # linfnorm of the frozen attitude filter fails below ~1e-7 (f1bar ~ 1e-14)
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains()
+class Options(V.BoundsOptions):
     eq0_min: float = option("--eq0-min", Number(EQ0_MIN, 1, unit="quaternion scalar part"),
                             1.0, "smallest |eq0| assumed along the run (attitude f1bar = "
                             "lambda_min(K1) eq0^2/4); the attitude filter is frozen there for "
                             f"its H-infinity gain; >= {EQ0_MIN:g} (an attitude error of "
                             "179.9 degrees): below, the frozen filter's H-infinity norm is "
                             "not computable (f1bar underflows)", probe=0.8)
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("bounds.json (the --json document)")
 
 
-@dataclass(frozen=True)
-class BoundsJob(Job):
-    gains: Any
-    eq0_min: float
+def bounds(gains: Any, progress: Any, eq0_min: float) -> Outcome:
+    """The (18) constants and the filters' true L2 gains per loop, the attitude filter
+    frozen at ``eq0_min`` (the smallest quaternion scalar part assumed)."""
+    from lgw.theory.lunar.bounds import attitude_bounds, orbit_bounds
 
-    def run(self, progress: Any) -> Outcome:
-        from lgw.theory.lunar.bounds import attitude_bounds, orbit_bounds
-
-        progress.stage("L2 gains of the filters (python-control linfnorm)")
-        b = {"orbit": orbit_bounds(self.gains.orbit).to_dict(),
-             "attitude": attitude_bounds(self.gains.attitude, self.eq0_min).to_dict()}
-        doc = {**b, "notes": {"norms": "L2 over [0, t]; gains dimensionless (input B0 du, "
-                              "output lambda)", "attitude": f"frozen at eq0 = {self.eq0_min}"}}
-        return Outcome(doc, render=lambda con: _render(con, b),
-                       files={"bounds.json": DOCUMENT})
+    progress.stage("L2 gains of the filters (python-control linfnorm)")
+    b = {"orbit": orbit_bounds(gains.orbit).to_dict(),
+         "attitude": attitude_bounds(gains.attitude, eq0_min).to_dict()}
+    doc = {**b, "notes": {"norms": "L2 over [0, t]; gains dimensionless (input B0 du, "
+                          "output lambda)", "attitude": f"frozen at eq0 = {eq0_min}"}}
+    return Outcome(doc, render=lambda con: _render(con, b), files={"bounds.json": DOCUMENT})
 
 
 def _render(con: Any, b: dict[str, Any]) -> None:
@@ -54,7 +46,8 @@ def _render(con: Any, b: dict[str, Any]) -> None:
                                                                   "attitude"), rows)
 
 
-def plan(opts: Options, system: Any) -> BoundsJob:
+def plan(opts: Options, system: Any) -> Call:
     from lgw.tuning.lunar.gainset import resolve
 
-    return BoundsJob(resolve(opts.gains), opts.eq0_min)
+    return Call("lgw.tuning.lunar.cmd_bounds:bounds", resolve(opts.gains),
+                {"eq0_min": opts.eq0_min})

@@ -9,19 +9,20 @@ JSON (--json), figures (--plot: the tracking errors of the eight runs and the ba
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
 from lgw.tuning.options import Number
-from lgw.tuning.spec import Options, option
+from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains(" (a tuned file also sets --cmd-wn and --thrust-max)")
+class Options(V.Outputs, gains=" (a tuned file also sets --cmd-wn and --thrust-max)",
+              out="compare.json (the --json document) and the figures",
+              plot="lunar_compare.png (tracking errors of the eight runs) and "
+                   "lunar_bandwidth.png (the sweep)"):
     cmd_wn: float | None = option("--cmd-wn", Number(0, 1e3, lo_open=True, unit="rad/s"), None,
                                   "command filter natural frequency of the coupled runs, rad/s "
                                   "[default: the --gains file's, else "
@@ -33,10 +34,6 @@ class Options(Options):
                             ".DT and DT_CAMPAIGN]")
     sweep: bool = option("--sweep", None, True, "sweep the command filter's bandwidth on the "
                          "Section 5 case (coupled, at dt and dt/2)", secondary="--no-sweep")
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("compare.json (the --json document) and the figures")
-    plot: Path | None = V.plot_dir("lunar_compare.png (tracking errors of the eight runs) and "
-                                   "lunar_bandwidth.png (the sweep)")
 
 
 @dataclass(frozen=True)

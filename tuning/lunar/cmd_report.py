@@ -7,18 +7,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from lgw.tuning import vocabulary as V
-from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts, claim_option
+from lgw.tuning.reporting import ReportJob, ReportOptions, ReportParts, plan_report
 
 
 @dataclass(frozen=True)
-class Options(ReportOptions):
-    sim: bool = V.sim_toggle(True, "the Section 5 case (coupled and ideal pointing, each "
-                             "checked at dt/4) for the scenario claims, the measured L2 norms "
-                             "and the figures (tracking errors, thrust around the failure, d0e "
-                             "against ||d||, V2 and Vlambda), and the command filter's "
-                             "bandwidth swept (~2-5 min)")
-    claim: tuple = claim_option("attitude-F1")
+class Options(ReportOptions, claim="attitude-F1",
+              sim="the Section 5 case (coupled and ideal pointing, each checked at dt/4) for "
+                  "the scenario claims, the measured L2 norms and the figures (tracking "
+                  "errors, thrust around the failure, d0e against ||d||, V2 and Vlambda), and "
+                  "the command filter's bandwidth swept (~2-5 min)"):
+    """--gains, --json, --out, --sim/--no-sim and --claim: seed 001's report has no other
+    option."""
 
 
 @dataclass(frozen=True)
@@ -62,10 +61,7 @@ def plan(opts: Options, system: Any) -> ReportJob:
 
     g = resolve(opts.gains)  # validated before anything is written
     run = replace(RunOptions(), **run_defaults(g))
-    return ReportJob("lgw.tuning.lunar.cmd_report:parts", Inputs(g, opts.sim, run),
-                     opts.out is not None, only=tuple(opts.claim),
-                     gains_path="" if opts.gains is None else str(opts.gains),
-                     claim_option=True)
+    return plan_report("lgw.tuning.lunar.cmd_report:parts", Inputs(g, opts.sim, run), opts)
 
 
 def tuning_section(g):

@@ -10,14 +10,13 @@ cases (every other outcome counted apart), the first cases re-flown at dt/2.  A 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
 from lgw.tuning.options import Number, choice
-from lgw.tuning.spec import Options, option
+from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
 
 ENVELOPE_CHOICES = ("campaign", "section5", "certificate")
@@ -42,8 +41,11 @@ def random_cases(n: int, seed: int):
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains(" (a tuned file also sets --cmd-wn and --thrust-max)")
+class Options(V.Outputs, gains=" (a tuned file also sets --cmd-wn and --thrust-max)",
+              out="summary.json (the --json document; a campaign's cases streamed) and "
+                  "section5.png",
+              plot="figures of case 0: tracking errors, thrust around the failure with T_max, "
+                   "d0e against ||d||, V2 and Vlambda"):
     cases: int | None = V.cases(None, "Monte Carlo cases over --envelope [default: the "
                                 "Section 5 case]")
     seed: int = V.seed(0, "seed of the campaign")
@@ -81,11 +83,6 @@ class Options(Options):
                             "(1/640 s), campaigns DT_CAMPAIGN (1/320 s): chosen by "
                             "convergence]", probe=0.02)
     t_max: float | None = V.t_max(None, "end time", hi=1e5)
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("summary.json (the --json document; a campaign's cases "
-                                 "streamed) and section5.png")
-    plot: Path | None = V.plot_dir("figures of case 0: tracking errors, thrust around the "
-                                   "failure with T_max, d0e against ||d||, V2 and Vlambda")
 
     def check(self) -> None:
         super().check()

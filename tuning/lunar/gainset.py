@@ -1,23 +1,15 @@
-"""Seed 001's gain set as the shared commands see it: load, default, document, example."""
+"""Seed 001's gain set as the shared commands see it: load, default (Section 5's), document,
+example (``lgw.tuning.gainset``)."""
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 from lgw.theory.lunar.gains import Gains, load, paper_gains
+from lgw.tuning.gainset import GainSet
 
 
-def default() -> Gains:
-    return paper_gains()
-
-
-def resolve(path: Path | None) -> Gains:
-    """The gains of ``--gains`` (validated), or seed 001 Section 5's."""
-    return paper_gains() if path is None else load(path)
-
-
-def document(g: Gains) -> dict[str, Any]:
+def _document(g: Gains) -> dict[str, Any]:
     return {"gains": g.to_dict()}
 
 
@@ -33,7 +25,7 @@ def run_defaults(g: Gains) -> dict[str, float]:
     return out
 
 
-def example() -> str:
+def _example() -> str:
     """A valid gain set other than the paper's (TOML), for the options test."""
     d = paper_gains().to_dict()
     lines = []
@@ -46,4 +38,7 @@ def example() -> str:
     return "\n".join(lines) + "\n"
 
 
-__all__ = ["default", "document", "example", "load", "resolve", "run_defaults"]
+GAINS = GainSet(load=load, default=paper_gains, example=_example, document=_document)
+load, default, resolve, document, example = GAINS.parts()
+
+__all__ = ["GAINS", "default", "document", "example", "load", "resolve", "run_defaults"]

@@ -1,37 +1,10 @@
 """Seed 001 (lunar descent, adaptive backstepping with saturation and failure) as a
-``System``."""
+``System``.
 
-from lgw.tuning.system import NotApplicable, System, Verb
+Its card, what ``lgw`` shows of it (seed, title, summary, each verb's help or why it does
+not apply), is ``data/system.toml``; its parts are at the standard paths.
+"""
 
-_M = "lgw.tuning.lunar"
+from lgw.tuning.system import carded_system
 
-SYSTEM = System(
-    name="lunar", seed="001",
-    title="Adaptive backstepping for optimal descent with input saturation and failure",
-    summary="lunar descent (adaptive backstepping)",
-    gains=f"{_M}.gainset", claims="lgw.theory.lunar.claims:all_claims",
-    interop="lgw.sim.lunar.interop",
-    kernels="lgw.sim.lunar.batch:warmup_kernels",
-    verbs={
-        "bounds": Verb(f"{_M}.cmd_bounds", "the (18) constants beside the true filter L2 "
-                         "gains, and (19)-(21) for a case"),
-        "simulate": Verb(f"{_M}.cmd_simulate", "fly the Section 5 scenario (or random "
-                           "cases): errors, thrust, torque, d0e, V2"),
-        "verify": Verb(f"{_M}.cmd_verify", "property campaign: V2 (13), (18), (19), (21a) "
-                         "against measured runs"),
-        "report": Verb(f"{_M}.cmd_report", "the derivation report (Markdown, LaTeX, "
-                         "HTML) with every claim's verdict"),
-        "tune": Verb(f"{_M}.cmd_tune", "gains, command filter and thrust redundancy for a "
-                       "tracking target and the thrust limit with the failure, certified"),
-        "compare": Verb(f"{_M}.cmd_compare", "Section 5 with and without failure and "
-                          "saturation, ideal against coupled pointing, the filter swept"),
-        "optimal": NotApplicable(
-            "seed 001 has no separate offline baseline: its law tracks the paper's own "
-            "optimal descent (linear-tangent steering (3)-(4), solved as a boundary-value "
-            "problem), "
-            "which simulate and compare fly; the lossless-convexification baseline is "
-            "seed 000's Part 1 comparison"),
-        "warmup": Verb("lgw.tuning.cmd_warmup", "build and cache every compiled kernel in "
-                       "one step"),
-    },
-)
+SYSTEM = carded_system("lunar")

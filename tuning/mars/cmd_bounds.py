@@ -8,42 +8,36 @@ law); landing_time_bound_disturbed the sound bound to enter the (31) neighbourho
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
-from lgw.tuning.spec import Options
-from lgw.tuning.system import Job, Outcome
+from lgw.tuning.system import Call, Outcome
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains()
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("bounds.json (the --json document)")
+class Options(V.BoundsOptions):
+    """--gains, --json, --out: nothing else decides seed 000's bounds."""
 
 
-@dataclass(frozen=True)
-class BoundsJob(Job):
-    gains: Any
+def bounds(gains: Any, progress: Any) -> Outcome:
+    """Every settling-time, neighbourhood and landing-time bound per axis (s, m, m/s), with
+    the gain set's warnings."""
+    from lgw.theory.mars.bounds import axis_bounds
+    from lgw.theory.mars.report import gain_warnings
 
-    def run(self, progress: Any) -> Outcome:
-        from lgw.theory.mars.bounds import axis_bounds
-        from lgw.theory.mars.report import gain_warnings
-
-        b = axis_bounds(self.gains)
-        warnings = gain_warnings(self.gains)
-        doc = {**b, "notes": {
-            "units": "seconds for times, metres for s1_bound, m/s for s2_bound and v_bound",
-            "landing_time_bound": "sound, no disturbance, corrected law: T1_exact + T2_exact",
-            "landing_time_bound_disturbed": "sound, |a_p,i| <= a_max, corrected law: time to "
-            "enter |r_i| <= s1_bound, T2_practical_exact + T1_practical_exact",
-            "T_whole_paper": "the paper's max{T1, T2}: unproven (claim landing-time)",
-            "T3_paper": "(32) as printed: unproven (claim T3)",
-            "warnings": warnings}}
-        return Outcome(doc, render=lambda con: _render(con, b, warnings),
-                       files={"bounds.json": DOCUMENT})
+    b = axis_bounds(gains)
+    warnings = gain_warnings(gains)
+    doc = {**b, "notes": {
+        "units": "seconds for times, metres for s1_bound, m/s for s2_bound and v_bound",
+        "landing_time_bound": "sound, no disturbance, corrected law: T1_exact + T2_exact",
+        "landing_time_bound_disturbed": "sound, |a_p,i| <= a_max, corrected law: time to "
+        "enter |r_i| <= s1_bound, T2_practical_exact + T1_practical_exact",
+        "T_whole_paper": "the paper's max{T1, T2}: unproven (claim landing-time)",
+        "T3_paper": "(32) as printed: unproven (claim T3)",
+        "warnings": warnings}}
+    return Outcome(doc, render=lambda con: _render(con, b, warnings),
+                   files={"bounds.json": DOCUMENT})
 
 
 def _render(con: Any, b: dict[str, Any], warnings: list[str]) -> None:
@@ -60,7 +54,7 @@ def _render(con: Any, b: dict[str, Any], warnings: list[str]) -> None:
         con.print(f"warning: {w}", markup=False)
 
 
-def plan(opts: Options, system: Any) -> BoundsJob:
+def plan(opts: Options, system: Any) -> Call:
     from lgw.tuning.mars.gainset import resolve
 
-    return BoundsJob(resolve(opts.gains))
+    return Call("lgw.tuning.mars.cmd_bounds:bounds", resolve(opts.gains))

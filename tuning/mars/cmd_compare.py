@@ -18,7 +18,7 @@ from lgw.theory.mars.parameters import THRUST_MAX_AXIS
 from lgw.tuning import vocabulary as V
 from lgw.tuning.commands import DOCUMENT
 from lgw.tuning.options import FILE, Integer, Number, choice
-from lgw.tuning.spec import Options, option
+from lgw.tuning.spec import option
 from lgw.tuning.system import Job, Outcome
 
 AMPLITUDE = Number(0, 1e6, lo_open=True, unit="m/s^2")
@@ -38,8 +38,7 @@ def probe_tuned_file(folder: Path) -> Path:
 
 
 @dataclass(frozen=True)
-class Options(Options):
-    gains: Path | None = V.gains()
+class Options(V.Outputs, out="compare.json (the --json document) and compare.png"):
     tuned: tuple = option("--tuned", FILE, (), "tuned gains file from `lgw tune mars` "
                           "(repeatable; flown with the law its certificate names) [default: "
                           "the shipped tuning/mars/data/tuned_tf90_50kN.toml]", multiple=True,
@@ -59,8 +58,6 @@ class Options(Options):
                        "(none: the SOCP's)")
     n: int = option("--n", Integer(N_RANGE[0], N_RANGE[1], "SOCP time steps"), 80,
                     "SOCP zero-order-hold steps", probe=40)
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("compare.json (the --json document) and compare.png")
 
     def check(self) -> None:
         super().check()

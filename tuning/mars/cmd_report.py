@@ -20,11 +20,11 @@ FIGURES_NOTE = ("Made by lgw.tuning.mars.figures from the simulator (RK4 at its 
 
 
 @dataclass(frozen=True)
-class Options(ReportOptions):
-    sim: bool = V.sim_toggle(True, "seed 000 Part 1's simulated comparison (lgw compare mars, "
-                             "~20 s) and its figure compare.png, and the claims on the paper's "
-                             "simulations: a search over the gains of (25) it leaves open, "
-                             "each flown on Table I, II and III (~1 min)")
+class Options(ReportOptions,
+              sim="seed 000 Part 1's simulated comparison (lgw compare mars, ~20 s) and its "
+                  "figure compare.png, and the claims on the paper's simulations: a search "
+                  "over the gains of (25) it leaves open, each flown on Table I, II and III "
+                  "(~1 min)"):
     figures: bool | None = option("--figures", None, None, "include the figures (Monte Carlo "
                                   "overlays and dispersions of Figs. 7-8 from a 300-case "
                                   "Table II campaign, settling against s1x(0) beside the "
@@ -39,12 +39,13 @@ class Options(ReportOptions):
                           "refuted claim's witness); repeatable", multiple=True,
                           metavar="ID", probe=("T2-printed",))
 
+    NEEDS_SIM = (("tuned", "the tuned sets fly in the comparison and in the search of the "
+                  "paper's simulation claims"),)
+
     def check(self) -> None:
         super().check()
         self.refuse_unless(self.out is not None, "figures", "needs --out (figures are "
                            "written beside the report)")
-        self.refuse_unless(self.sim, "tuned", "needs --sim (the tuned sets fly in the "
-                           "comparison and in the search of the paper's simulation claims)")
 
 
 @dataclass(frozen=True)

@@ -55,8 +55,12 @@ MEMORY_FRACTION = 0.5  # a campaign may use at most this share of the available 
 
 
 @dataclass(frozen=True)
-class Options(V.Dask):
-    gains: Path | None = V.gains()
+class Options(V.Outputs, V.Dask,
+              out="summary.json, cases.json, cases.csv (--fig6: fig6.json)",
+              plot="one case: thrust against time with the limit, s1-s2 phase portrait; a "
+                   "campaign: also the trajectory overlays (first 300 cases re-flown with RK4) "
+                   "and the final positions and velocities of every case; --fig6: settling "
+                   "against s1x(0) beside the bounds"):
     law: str = option("--law", choice(LAW_NAMES), "corrected",
                       "guidance law (corrected: seed 000 (25) with the workbench's correction)")
     dispersion: str | None = option("--dispersion", choice(DISPERSIONS), None,
@@ -107,13 +111,6 @@ class Options(V.Dask):
                              "instead of the batch integrator", is_flag=True)
     fig6: bool = option("--fig6", None, False, "seed 000 Fig. 6 fixed-time experiment (the "
                         "law, --dt, --eps, --drag and --t-max apply)", is_flag=True)
-    json: bool = V.json_flag()
-    out: Path | None = V.out_dir("summary.json, cases.json, cases.csv (--fig6: fig6.json)")
-    plot: Path | None = V.plot_dir("one case: thrust against time with the limit, s1-s2 phase "
-                                   "portrait; a campaign: also the trajectory overlays (first "
-                                   "300 cases re-flown with RK4) and the final positions and "
-                                   "velocities of every case; --fig6: settling against s1x(0) "
-                                   "beside the bounds")
 
     def check(self) -> None:
         super().check()
