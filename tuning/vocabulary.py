@@ -113,6 +113,15 @@ def thrust_max(default: float | None, what: str) -> Any:
                   f"actuator limit, N: {what}")
 
 
+# specific impulse, s: 1 s is far below any engine (cold gas ~60 s) and keeps the mass flow
+# T/(Isp g0) and the SOCP's 1/(Isp g0) finite; 1e5 s is above any (ion thrusters ~1e4 s)
+ISP_RANGE = (1.0, 1e5)
+
+
+def isp(default: float | None, what: str = "specific impulse, s") -> Any:
+    return option("--isp", Number(*ISP_RANGE, unit="s"), default, what)
+
+
 def scale() -> Any:
     return option("--scale", ScaleItem(), (), "CLAIM=FACTOR: multiply a claim's bound (the "
                   "checker's self-test; repeatable)", multiple=True, probe=NO_PROBE)

@@ -93,8 +93,8 @@ class Options(V.Outputs,
                                             "(--limit) [default: 22 N]")
     limit: str = option("--limit", choice(("axis", "norm")), "axis",
                         "descent only: the thrust limit per axis or on the norm")
-    isp: float | None = option("--isp", Number(0, 1e5, lo_open=True, unit="s"), None,
-                               "descent only: specific impulse, s [default: 225 s, hydrazine]")
+    isp: float | None = V.isp(None, "descent only: specific impulse, s [default: 225 s, "
+                                    "hydrazine]")
     srp: float | None = option("--srp", Number(0, 1.0, unit="m/s^2"), None,
                                "descent only: solar radiation pressure, m/s^2 [default: 7.3e-8]")
     nav: bool = option("--nav", None, False, "descent only: navigation errors (Gauss-Markov, "

@@ -29,7 +29,6 @@ PAPER_FUEL_OPTIMAL = 212.9067  # kg, seed 000 Part 1 (GPOPS, tf = 30 s)
 REPLAYS = (("none", 0.0), ("sin", 1.0), ("sin", 20.0))  # Fig. 3 uses 1; (47) prints 20
 TF_DEFAULT = 30.0  # s, seed 000 Part 1
 TF_MAX = 1e5  # s
-ISP_MAX = 1e5  # s: above any engine (ion thrusters reach ~1e4 s); the same range as simulate
 
 
 @dataclass(frozen=True)
@@ -51,8 +50,7 @@ class Options(Options):
                                       probe=5000.0)
     n: int = option("--n", Integer(N_RANGE[0], N_RANGE[1], "ZOH steps"), 80,
                     "number of zero-order-hold steps of the SOCP", probe=40)
-    isp: float = option("--isp", Number(0, ISP_MAX, lo_open=True, unit="s"), ISP,
-                        "specific impulse, s")
+    isp: float = V.isp(ISP)
     replay: bool = option("--replay", None, True, "fly the optimal force profile open loop in "
                           "the plant (no disturbance, 1 sin t, 20 sin t)", secondary="--no-replay")
     drag: str = option("--drag", choice(DRAG_MODELS), "none", "drag model of the replay's "

@@ -87,8 +87,7 @@ class Options(V.Outputs, V.Dask,
     guidance_drag: str | None = option("--guidance-drag", choice(DRAG_MODELS), None,
                                        "drag model the law cancels [default: the plant's "
                                        "--drag]", probe="none")
-    isp: float = option("--isp", Number(0, 1e5, lo_open=True, unit="s"), ISP,
-                        "specific impulse, s")
+    isp: float = V.isp(ISP)
     m_dry: float = option("--m-dry", Number(0, 1e9, lo_open=True, unit="kg"), M_DRY,
                           "dry mass, kg: a case whose mass reaches it is out of propellant")
     dt: float | None = V.dt(None, 1.0, f"RK4 step [default: {DT_DEFAULT}]; dopri5: the first "
