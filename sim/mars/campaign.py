@@ -327,17 +327,30 @@ class CaseJson:
 
 
 def _assemble(cols: list[tuple[str, list[bytes], bool]], n: int) -> bytes:
-    """n JSON objects joined by ",", the key of each column before its values: the values are
-    interleaved with the keys by extended-slice assignment into one list and joined once."""
-    stride = 2 * len(cols) + 1
-    pieces: list[bytes] = [b""] * (n * stride)
+    """n JSON objects joined by ",", the key of each column before its values.  The record is
+    a template of constant texts (the keys, and the columns whose value is the same in every
+    case of the chunk, e.g. null or false) between the varying columns; the varying values
+    are interleaved with the constants by extended-slice assignment into one list, joined
+    once."""
+    consts: list[bytes] = [b""]  # consts[k] comes before varying column k (and after the last)
+    varying: list[list[bytes]] = []
     close = b""  # what ends the previous value: "]" after a 3-list
     for j, (key, vals, vector) in enumerate(cols):
-        lead = b"{" if j == 0 else close + b","
-        pieces[2 * j::stride] = [lead + orjson.dumps(key) + b":" + (b"[" if vector else b"")] * n
-        pieces[2 * j + 1::stride] = vals
+        consts[-1] += (b"{" if j == 0 else close + b",") + orjson.dumps(key) + b":" + (
+            b"[" if vector else b"")
+        if n > 1 and vals.count(vals[0]) == n:
+            consts[-1] += vals[0]
+        else:
+            varying.append(vals)
+            consts.append(b"")
         close = b"]" if vector else b""
-    pieces[stride - 1::stride] = [close + b"},"] * n
+    consts[-1] += close + b"},"
+    stride = 2 * len(varying) + 1
+    pieces: list[bytes] = [b""] * (n * stride)
+    for k, vals in enumerate(varying):
+        pieces[2 * k::stride] = [consts[k]] * n
+        pieces[2 * k + 1::stride] = vals
+    pieces[stride - 1::stride] = [consts[-1]] * n
     return b"".join(pieces)[:-1]
 
 
