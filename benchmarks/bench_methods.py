@@ -3,6 +3,7 @@
 
     python benchmarks/bench_methods.py [--systems mars lunar eros] [--n-speed 1000]
                                        [--n-acc 10] [--repeat 3]
+    python benchmarks/bench_methods.py --printed [--n-speed 2000] [--n-acc 30]
 
 Per system, each method at the system's defaults (mars: dt 0.05 s, rtol = atol = 1e-5; lunar:
 dt 0.05 s, rtol = atol = 1e-6; eros: 2 RK4 steps per 0.01 s sample, rtol = atol = 1e-10):
@@ -68,6 +69,74 @@ def mars(n_speed: int, n_acc: int, repeat: int) -> None:
             r0, v0, m0, g, law="bounded", method=method, parallel=False), 1)
         print(f"mars {'bounded, Table II':16} {method:7} {20 / cpu:9.1f} cases/s "
               f"{b.steps.mean():8.0f} steps", flush=True)
+
+
+# what ``lgw simulate mars --dispersion table2`` prints per case and in its summary, as
+# (label, function of a BatchResult -> per-case values, (n,) or (n, 3))
+PRINTED = (
+    ("landing time s", lambda b: b.landing_time),
+    ("fuel kg", lambda b: b.fuel),
+    ("landing error |r| m", lambda b: np.linalg.norm(b.r_land, axis=1)),
+    ("landing speed |v| m/s", lambda b: np.linalg.norm(b.v_land, axis=1)),
+    ("peak thrust N", lambda b: b.peak_thrust),
+    ("time saturated s", lambda b: b.time_saturated),
+    ("t_s1 s", lambda b: b.t_s1),
+    ("t_s2 s", lambda b: b.t_s2),
+    ("min altitude m", lambda b: b.min_altitude),
+)
+SCENARIOS = (("Table II", "table2", {}),
+             ("Table III 50 kN", "table3", {"thrust_limit": 5e4}),
+             ("Table II sin 50 kN", "table2", {"thrust_limit": 5e4, "disturbance": "sin"}))
+
+
+def _diff(a: np.ndarray, r: np.ndarray) -> tuple[float, int]:
+    """(max |a - r| where both are finite, cases where exactly one is NaN: an event one
+    found and the other did not)."""
+    a, r = np.asarray(a, float), np.asarray(r, float)
+    one = np.isnan(a) != np.isnan(r)
+    d = np.abs(a - r)[np.isfinite(a) & np.isfinite(r)]
+    return (float(d.max()) if d.size else 0.0), int(one.reshape(len(a), -1).any(axis=1).sum())
+
+
+def mars_printed(n_speed: int, n_acc: int, repeat: int) -> None:
+    """Every number ``simulate mars`` prints, RK4 (dt 0.05 s) and dopri5 (rtol = atol = 1e-5,
+    and 1e-7) against the LSODA 1e-10 reference on the same cases; with each method's rate."""
+    from lgw.sim.mars.batch import simulate_batch
+    from lgw.sim.mars.campaign import table2_states, table3_states
+    from lgw.sim.mars.reference import simulate_reference
+    from lgw.theory.mars.gains import default_gains
+
+    g = default_gains()
+    methods = (("RK4 dt 0.05", {"method": "rk4"}), ("dopri5 1e-5", {"method": "dopri5"}),
+               ("dopri5 1e-7", {"method": "dopri5", "rtol": 1e-7, "atol": 1e-7}))
+    for label, disp, kw in SCENARIOS:
+        draw = table2_states if disp == "table2" else table3_states
+        r0, v0, m0 = draw(max(n_speed, n_acc), seed=0)
+        ref = simulate_reference(r0[:n_acc], v0[:n_acc], m0[:n_acc], g, **kw)
+        code_ref = ref.outcomes()[0]
+        rows = {}
+        for name, mk in methods:
+            cpu, b = best_cpu(lambda mk=mk, r0=r0, v0=v0, m0=m0, kw=kw: simulate_batch(
+                r0[:n_speed], v0[:n_speed], m0[:n_speed], g, parallel=False, **mk, **kw),
+                repeat)
+            a = simulate_batch(r0[:n_acc], v0[:n_acc], m0[:n_acc], g, **mk, **kw)
+            rows[name] = ([_diff(f(a), f(ref)) for _, f in PRINTED],
+                          int(np.sum(a.outcomes()[0] != code_ref)), n_speed / cpu,
+                          float(b.steps.mean()))
+        print(f"\nmars {label}: max |method - reference| over {n_acc} cases (LSODA 1e-10; "
+              "[k]: cases where only one of the two has the event)", flush=True)
+        print(f"{'quantity':24}" + "".join(f"{n:>22}" for n, _ in methods))
+        for q, (qname, _) in enumerate(PRINTED):
+            cells = []
+            for n, _ in methods:
+                d, k = rows[n][0][q]
+                cells.append(f"{d:.1e}" + (f" [{k}]" if k else ""))
+            print(f"{qname:24}" + "".join(f"{c:>22}" for c in cells))
+        print(f"{'outcomes differ':24}" + "".join(f"{rows[n][1]:>22}" for n, _ in methods))
+        print(f"{'cases/s, one thread':24}" + "".join(f"{rows[n][2]:>22.0f}"
+                                                     for n, _ in methods))
+        print(f"{'accepted steps per case':24}" + "".join(f"{rows[n][3]:>22.0f}"
+                                                         for n, _ in methods), flush=True)
 
 
 # lunar accuracy horizon (s): the transients, the saturation and the first part of the descent
@@ -138,8 +207,15 @@ def main() -> None:
     ap.add_argument("--n-acc", type=int, default=10, help="mars cases against the reference "
                     "(lunar / 5, eros / 5)")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--printed", action="store_true", help="mars only: every number "
+                    "'simulate mars' prints, each method against the reference, on Table II, "
+                    "Table III at 50 kN and Table II with the sin disturbance at 50 kN")
     a = ap.parse_args()
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}")
+    if a.printed:
+        mars_printed(a.n_speed, a.n_acc, a.repeat)
+        print(f"load average at the end {os.getloadavg()[0]:.2f}")
+        return
     for s in a.systems:
         if s == "mars":
             mars(a.n_speed, a.n_acc, a.repeat)

@@ -16,16 +16,16 @@ SeedSequence(seed).spawn child, so the results are identical whatever the execut
 
 from __future__ import annotations
 
-import json
 import math
 import shutil
 import tempfile
 import weakref
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+import orjson
 from lgw.sim import executors
 from lgw.sim.mars.batch import ARRAY_FIELDS, OUTCOMES_USED, BatchResult, simulate_batch
 from lgw.sim.results import OUTCOMES, counts
@@ -266,32 +266,92 @@ def iter_case_records(res: BatchResult | SpilledResult, n: int | None = None
             yield rec
 
 
-Records = Callable[[Iterator[dict[str, Any]]], Iterable[dict[str, Any]]]
+Extra = Callable[[int, int], dict[str, list[Any]]]
+
+
+def _items(text: bytes, vector: bool) -> list[bytes]:
+    """The items of a JSON array ``text`` of n values (or, ``vector``, of n 3-lists: each
+    item is then the list's inside, "a,b,c") as encoded text."""
+    if text in (b"[]", b"[[]]"):
+        return []
+    return text[2:-2].split(b"],[") if vector else text[1:-1].split(b",")
+
+
+def _encode_column(a: Any) -> list[bytes]:
+    """Each case's value of the per-case column ``a`` (n,) or (n, 3) as strict JSON text,
+    non-finite floats as null: orjson encodes the whole column in C (shortest round-trip
+    floats, ~30 ns each against ~1 us for ``json.dumps``' ``float.__repr__``)."""
+    vector = False
+    if isinstance(a, np.ndarray):  # else a list of JSON-ready values
+        a = np.ascontiguousarray(a)
+        vector = a.ndim == 2
+    return _items(orjson.dumps(a, option=orjson.OPT_SERIALIZE_NUMPY), vector)
 
 
 class CaseJson:
-    """The case records of ``res`` (the first ``n``; each passed through ``post`` if given) as
-    JSON text, RECORD_CHUNK records at a time joined by "," (items of a JSON array, strict
-    JSON: non-finite values are already null), for ``lgw.tuning.io.Stream(encoded=...)``: the
-    same bytes as the records written one by one, without a walk over every value.  Each
-    iteration starts afresh (a document may be written twice: --out and stdout)."""
+    """The case records of ``res`` (the first ``n``) as JSON text, RECORD_CHUNK records at a
+    time joined by "," (items of a JSON array, strict JSON: non-finite values are null), for
+    ``lgw.tuning.io.Stream(encoded=...)``: the same keys, order and values as
+    ``iter_case_records``, encoded column by column (each column of a chunk in one orjson
+    call, the records assembled by one join), never one Python object per value: a million
+    cases in seconds, in flat memory.  ``extra(a, b)`` returns further keys for cases a..b-1
+    (name -> one JSON-ready value per case), added after the record's own.  Each iteration
+    starts afresh (a document may be written twice: --out and stdout)."""
 
     def __init__(self, res: BatchResult | SpilledResult, n: int | None = None,
-                 post: Records | None = None) -> None:
-        self.res, self.n, self.post = res, n, post
+                 extra: Extra | None = None) -> None:
+        self.res, self.n, self.extra = res, n, extra
 
     def __iter__(self) -> Iterator[str]:
-        recs: Iterable[dict[str, Any]] = iter_case_records(self.res, self.n)
-        if self.post is not None:
-            recs = self.post(recs)
-        buf: list[str] = []
-        for rec in recs:
-            buf.append(json.dumps(rec, allow_nan=False))
-            if len(buf) == RECORD_CHUNK:
-                yield ",".join(buf)
-                buf = []
-        if buf:
-            yield ",".join(buf)
+        res = self.res
+        total = len(res) if self.n is None else min(self.n, len(res))
+        refined = res.info.get("refined_dt", {})
+        for a in range(0, total, RECORD_CHUNK):
+            b = min(a + RECORD_CHUNK, total)
+            part = result_rows(res, slice(a, b))
+            code, t_out = part.outcomes()
+            cols: list[tuple[str, list[bytes], bool]] = [
+                ("case", _encode_column(np.arange(a, b, dtype=np.int64)), False)]
+            for k in RECORD_ARRAYS:
+                col = np.asarray(getattr(part, k))
+                cols.append((k, _encode_column(col), col.ndim == 2))
+            cols.append(("refined_dt", _encode_column([refined.get(i) for i in range(a, b)])
+                         if refined else [b"null"] * (b - a), False))
+            cols.append(("eps", [orjson.dumps(part.eps)] * (b - a), False))
+            names = [orjson.dumps(o) for o in OUTCOMES]
+            cols.append(("outcome", [names[k] for k in code.tolist()], False))
+            cols.append(("outcome_time", _encode_column(t_out), False))
+            if self.extra is not None:
+                cols += [(k, _encode_column(v), False) for k, v in self.extra(a, b).items()]
+            yield _assemble(cols, b - a).decode("ascii")
+
+
+def _assemble(cols: list[tuple[str, list[bytes], bool]], n: int) -> bytes:
+    """n JSON objects joined by ",", the key of each column before its values.  The record is
+    a template of constant texts (the keys, and the columns whose value is the same in every
+    case of the chunk, e.g. null or false) between the varying columns; the varying values
+    are interleaved with the constants by extended-slice assignment into one list, joined
+    once."""
+    consts: list[bytes] = [b""]  # consts[k] comes before varying column k (and after the last)
+    varying: list[list[bytes]] = []
+    close = b""  # what ends the previous value: "]" after a 3-list
+    for j, (key, vals, vector) in enumerate(cols):
+        consts[-1] += (b"{" if j == 0 else close + b",") + orjson.dumps(key) + b":" + (
+            b"[" if vector else b"")
+        if n > 1 and vals.count(vals[0]) == n:
+            consts[-1] += vals[0]
+        else:
+            varying.append(vals)
+            consts.append(b"")
+        close = b"]" if vector else b""
+    consts[-1] += close + b"},"
+    stride = 2 * len(varying) + 1
+    pieces: list[bytes] = [b""] * (n * stride)
+    for k, vals in enumerate(varying):
+        pieces[2 * k::stride] = [consts[k]] * n
+        pieces[2 * k + 1::stride] = vals
+    pieces[stride - 1::stride] = [consts[-1]] * n
+    return b"".join(pieces)[:-1]
 
 
 # --- campaigns kept on disk -----------------------------------------------------------------

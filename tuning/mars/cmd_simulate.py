@@ -203,7 +203,7 @@ class SimulateJob(Job):
             return with_checks(campaign.iter_case_records(res), conv)
 
         def encoded() -> Any:  # the same records as JSON text, a chunk at a time
-            return campaign.CaseJson(res, post=lambda recs: with_checks(recs, conv))
+            return campaign.CaseJson(res, extra=lambda a, b: check_column(conv, a, b))
 
         cases = Stream(encoded=encoded())
         figures = []
@@ -484,6 +484,12 @@ def with_checks(records: Any, conv: Any) -> Any:
     for rec in records:
         rec["converged"] = conv.case_ok.get(rec["case"])
         yield rec
+
+
+def check_column(conv: Any, a: int, b: int) -> dict[str, list[bool | None]]:
+    """``with_checks``' key for the cases a..b-1, as a column (``lgw.sim.mars.campaign.
+    CaseJson``)."""
+    return {"converged": [conv.case_ok.get(i) for i in range(a, b)]}
 
 
 def settings_used(res: Any, sim: dict[str, Any], *, method: str, reference: bool,
