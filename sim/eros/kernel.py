@@ -42,7 +42,6 @@ pos (N, 3), vel (N, 3)).
 from __future__ import annotations
 
 import functools
-import inspect
 import math
 
 import numpy as np
@@ -165,15 +164,8 @@ def _contact(y, S, Q):  # noqa: N803
 def _u_axis(lawc, swc, e, ed, f, dk, xdd, d, gv, out):
     """One axis of the generated control (lgw.theory.eros.laws.control): the variant picked
     by the law and switch codes, gains gv in the order of lgw.sim.eros.laws.GAIN_ARGS."""
-    alpha = gv[0]
-    beta = gv[1]
-    r = gv[2]
-    kk = gv[3]
-    lam = gv[4]
-    N = gv[5]
-    M = gv[6]
-    phi = gv[7]
-    ef = gv[8]
+    alpha, beta, r, kk, lam, N, M, phi, ef = (gv[0], gv[1], gv[2], gv[3], gv[4], gv[5],  # noqa: N806
+                                              gv[6], gv[7], gv[8])
     if lawc == 0:
         if swc == 0:
             u_pdsmc_sign(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
@@ -293,7 +285,7 @@ def sys_sample(i, k, t, y, S, C, Q, R):  # noqa: N803
     hit = False
     if contact_on:
         hit = _contact_fn(y, S, Q)  # noqa: F821
-    ok = _controller_fn(i, k, y, S, C, Q, R)  # noqa: F821
+    ok = _controller_call(i, k, y, S, C, Q, R)  # noqa: F821
     if hit:
         S[OUT] = CONTACT  # noqa: F821
     elif not ok:
@@ -333,7 +325,7 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
         pos[i, a] = y[a]
         vel[i, a] = y[3 + a]
     for k in range(kc + 1, nk + 1):
-        _controller_fn(i, k, y, S, C, Q, R)  # noqa: F821
+        _controller_call(i, k, y, S, C, Q, R)  # noqa: F821
         if k < nk:
             for a in range(3):
                 U[i, k, a] = 0.0
@@ -349,13 +341,11 @@ SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY":
 
 
 def hooks_source() -> str:
-    """The hooks as written into a kernel module, with their slots."""
-    from lgw.sim.integrate import hook_jit
-    src = [inspect.getsource(f) + "\n" for f in HELPERS + HOOKS]
-    jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True"
-            + (", inline='always')" if f in INLINE else ")") for f in HELPERS]
-           + hook_jit(f.__name__ for f in HOOKS))
-    return "\n".join([*(f"{k} = {v!r}" for k, v in SLOTS.items()), "", *src, *jit])
+    """The hooks as written into a kernel module, with their slots.  ``sys_finish`` (once per
+    case) calls the controller (``_controller_call``) instead of inlining a second copy of it
+    and its six laws: that copy was a sixth of the kernel's cold build."""
+    from lgw.sim.integrate import hooks_text
+    return hooks_text(HOOKS, HELPERS, consts=SLOTS, inline=INLINE, called=(_controller,))
 
 
 def _deps() -> list[str]:
