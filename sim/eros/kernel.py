@@ -285,7 +285,7 @@ def sys_sample(i, k, t, y, S, C, Q, R):  # noqa: N803
     hit = False
     if contact_on:
         hit = _contact_fn(y, S, Q)  # noqa: F821
-    ok = _controller_call(i, k, y, S, C, Q, R)  # noqa: F821
+    ok = _controller_fn(i, k, y, S, C, Q, R)  # noqa: F821
     if hit:
         S[OUT] = CONTACT  # noqa: F821
     elif not ok:
@@ -325,15 +325,17 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
         pos[i, a] = y[a]
         vel[i, a] = y[3 + a]
     for k in range(kc + 1, nk + 1):
-        _controller_call(i, k, y, S, C, Q, R)  # noqa: F821
+        _controller_fn(i, k, y, S, C, Q, R)  # noqa: F821
         if k < nk:
             for a in range(3):
                 U[i, k, a] = 0.0
 
 
 HELPERS = (_inside, _clearance, _contact, _u_axis, _s_axis, _controller)
-# inlined into sys_sample (measured: see benchmarks/bench_eros.py)
-INLINE = (_u_axis, _s_axis, _controller)
+# inlined into sys_sample (measured: see benchmarks/bench_eros.py); not the six laws' switch
+# _u_axis, a call of scalars per axis and sample: inlined, its six laws were a third of the
+# kernel's cold build (twice: the finish hook inlines the controller too)
+INLINE = (_s_axis, _controller)
 HOOKS = (sys_init, sys_rhs, sys_sample, sys_start, sys_step, sys_finish)
 SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY": LY, "LZ": LZ,
          "OUT": OUT, "TEV": TEV, "KCUR": KCUR, "F0": F0, "G0": G0, "SV0": SV0, "U0": U0,
@@ -341,11 +343,9 @@ SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY":
 
 
 def hooks_source() -> str:
-    """The hooks as written into a kernel module, with their slots.  ``sys_finish`` (once per
-    case) calls the controller (``_controller_call``) instead of inlining a second copy of it
-    and its six laws: that copy was a sixth of the kernel's cold build."""
+    """The hooks as written into a kernel module, with their slots."""
     from lgw.sim.integrate import hooks_text
-    return hooks_text(HOOKS, HELPERS, consts=SLOTS, inline=INLINE, called=(_controller,))
+    return hooks_text(HOOKS, HELPERS, consts=SLOTS, inline=INLINE)
 
 
 def _deps() -> list[str]:
