@@ -332,10 +332,8 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
 
 
 HELPERS = (_inside, _clearance, _contact, _u_axis, _s_axis, _controller)
-# inlined into sys_sample (measured: see benchmarks/bench_eros.py); not the six laws' switch
-# _u_axis, a call of scalars per axis and sample: inlined, its six laws were a third of the
-# kernel's cold build (twice: the finish hook inlines the controller too)
-INLINE = (_s_axis, _controller)
+# inlined into sys_sample (measured: see benchmarks/bench_eros.py)
+INLINE = (_u_axis, _s_axis, _controller)
 HOOKS = (sys_init, sys_rhs, sys_sample, sys_start, sys_step, sys_finish)
 SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY": LY, "LZ": LZ,
          "OUT": OUT, "TEV": TEV, "KCUR": KCUR, "F0": F0, "G0": G0, "SV0": SV0, "U0": U0,
