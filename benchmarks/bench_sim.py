@@ -6,6 +6,7 @@
     /work/venv/bin/python benchmarks/bench_sim.py --dt-sweep      # accuracy, landing, speed vs dt
     /work/venv/bin/python benchmarks/bench_sim.py --tol-sweep     # the same for dopri5 vs rtol
     /work/venv/bin/python benchmarks/bench_sim.py --before e448ec4   # every system now vs a commit
+    python benchmarks/bench_sim.py --before e4c8ca7 --cache-before ~/.cache/lgw-before
 
 Measures, on Table II cases (seed 000, corrected law, default gains, physical drag):
   (a) a per-case scipy solve_ivp loop (RK45, rtol = atol = 1e-8, landing event) written as a
@@ -355,12 +356,13 @@ def worker() -> None:
 
 
 def before_after(commit: str, systems: list[str], n: int, repeat: int,
-                 now: str | None = None) -> None:
+                 now: str | None = None, cache_before: str | None = None) -> None:
     """The simulators now against ``commit``: two worker processes (this checkout, or the
     tree of commit ``now``, and the tree of ``commit``), the same cases on one thread each,
     runs interleaved, best CPU time of ``repeat``; the ratio now/before of the rates and
     whether the results are bitwise equal.  A commit's kernels are compiled in a cache of
-    their own (cold: minutes)."""
+    their own (cold: minutes), under ``cache_before`` (kept: a second run loads them) if given,
+    else in the commit's temporary tree."""
     import json
     import subprocess
     import sys
@@ -374,8 +376,10 @@ def before_after(commit: str, systems: list[str], n: int, repeat: int,
         # one thread everywhere (the campaigns run their chunks in the kernels' threads)
         env = dict(os.environ, NUMBA_NUM_THREADS="1")
         if label in trees:
-            env.update(PYTHONPATH=str(trees[label] / "pkg"),
-                       LGW_CACHE_DIR=str(trees[label] / "cache"))
+            cache = trees[label] / "cache"
+            if cache_before is not None and label == "before":
+                cache = Path(cache_before).expanduser() / commit
+            env.update(PYTHONPATH=str(trees[label] / "pkg"), LGW_CACHE_DIR=str(cache))
         elif "LGW_CACHE_DIR" not in os.environ:
             env["LGW_CACHE_DIR"] = tempfile.mkdtemp(prefix="lgw-now-")
         procs[label] = subprocess.Popen([sys.executable, __file__, "--worker"], env=env,
@@ -404,9 +408,12 @@ def before_after(commit: str, systems: list[str], n: int, repeat: int,
                       f"{m / best['now']:10.1f} {best['before'] / best['now']:10.3f}  "
                       f"{dig['before'] == dig['now']}", flush=True)
     finally:
+        import shutil
         for p in procs.values():
             p.stdin.close()
             p.wait()
+        for tree in trees.values():
+            shutil.rmtree(tree, ignore_errors=True)
 
 
 def main() -> None:
@@ -417,6 +424,9 @@ def main() -> None:
                     "equality, in one run)")
     ap.add_argument("--now", metavar="COMMIT", default=None,
                     help="with --before: the simulators at COMMIT instead of this checkout")
+    ap.add_argument("--cache-before", metavar="DIR", default=None,
+                    help="with --before: keep the commit's compiled kernels in DIR/COMMIT "
+                    "(a second run loads them instead of compiling) [default: a temporary one]")
     ap.add_argument("--systems", nargs="+", choices=SYSTEMS, default=list(SYSTEMS),
                     help="workloads for --before")
     ap.add_argument("--n-before", type=int, default=2000,
@@ -446,7 +456,8 @@ def main() -> None:
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} "
           "(other processes share the cores: numbers are lower bounds)")
     if args.before:
-        before_after(args.before, args.systems, args.n_before, args.repeat, args.now)
+        before_after(args.before, args.systems, args.n_before, args.repeat, args.now,
+                     args.cache_before)
         return
     if args.floor:
         chatter_floor(g)

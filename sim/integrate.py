@@ -100,7 +100,7 @@ DP_E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 52
 
 # --- compiled helpers (shared by every system) --------------------------------------------
 
-@numba.njit(error_model="numpy", inline="always", cache=True)
+@numba.njit(error_model="numpy", cache=True)
 def _herm(p0: float, d0: float, p1: float, d1: float, h: float, th: float) -> float:
     """Cubic Hermite interpolant at th in [0, 1] of a step of length h with values p0, p1 and
     derivatives d0, d1 at its ends (O(h^4) accurate, like RK4 itself)."""
@@ -134,7 +134,7 @@ def _herm_min(p0: float, d0: float, p1: float, d1: float, h: float, b: float) ->
     return lo
 
 
-@numba.njit(error_model="numpy", inline="always", cache=True)
+@numba.njit(error_model="numpy", cache=True)
 def _band(sa: float, sb: float, eps: float) -> tuple[float, float]:
     """[lo, hi] in [0, 1] where the linear interpolant of s has |s| <= eps (lo > hi: empty)."""
     ds = sb - sa
@@ -231,14 +231,8 @@ def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
         # RK4: k1..k4 and y' at the new node (row 4); dopri5: k1..k6 and k7 = y' at the new node
         K = np.empty((7, NY))  # noqa: F821
         nst = 4 if method == 0 else 6  # rhs calls per step; the last one is at the new node
-        y = Y[0]
-        yt = Y[1]
-        yn = Y[2]
-        k1 = K[0]
-        k2 = K[1]
-        k3 = K[2]
-        k4 = K[3]
-        k1n = K[nst]
+        y, yt, yn = Y[0], Y[1], Y[2]
+        k1, k2, k3, k4, k1n = K[0], K[1], K[2], K[3], K[nst]
         X = np.empty(NX)  # auxiliary outputs of the latest rhs call  # noqa: F821
         XL = np.empty(NX)  # ... at the current node  # noqa: F821
         S = np.empty(NS)  # the system's trackers  # noqa: F821
@@ -445,6 +439,10 @@ kernel = numba.njit(kernel, error_model="numpy", nogil=True, cache=True)
 # and 002's (each call passes and unpacks the tuples C, Q, R: tens of arrays, reference counts
 # on each).  The hooks run once per case (init, start, finish) are compiled as functions of
 # their own: numba's front end is superlinear in a function's size, and they are a third of it.
+# Small scalar helpers (``_herm``, ``_band``, ...) are not inlined by numba: each numba inline
+# re-translates the helper and grows the caller's IR (seed 000's step hook calls ``_herm`` at a
+# dozen sites: a third of the kernel's front end); as calls of float arguments they are
+# compiled once, cached, and inlined by LLVM instead, with the same arithmetic (docs/sim.md).
 INLINED_HOOKS = ("sys_rhs", "sys_step", "sys_sample")
 
 
@@ -458,6 +456,30 @@ def hook_jit(names: Iterable[str], cache: bool = False,
     inl = set(INLINED_HOOKS) | set(inline)
     return [f"{n} = numba.njit({n}, error_model='numpy'{opts}"
             + (", inline='always')" if n in inl else ")") for n in names]
+
+
+def hooks_text(hooks: Iterable, helpers: Iterable = (), *, consts: dict | None = None,
+               imports: Iterable[str] = (), inline: Iterable = (), called: Iterable = (),
+               cache: bool = False) -> str:
+    """A system's hooks as written into a generated module, for every system alike: the
+    ``imports`` lines, the constants (tracker slots, codes: ``NAME = value``), the source of
+    each helper and hook, then their compilation.  A helper ``h`` is compiled as ``h_fn``
+    (cached; inlined by numba if in ``inline``) and, if also in ``called``, as ``h_call`` (a
+    plain call: for a hook run once per case that need not copy an inlined helper again); the
+    hooks by ``hook_jit`` (cached if ``cache``: a module of hooks that several kernels share)."""
+    helpers = tuple(helpers)
+    hooks = tuple(hooks)
+    inl = set(inline)
+
+    def jit(f, suffix: str, inlined: bool) -> str:
+        return (f"{f.__name__}{suffix} = numba.njit({f.__name__}, error_model='numpy', "
+                "cache=True" + (", inline='always')" if inlined else ")"))
+
+    return "\n".join([*imports, "", *(f"{k} = {v!r}" for k, v in (consts or {}).items()), "",
+                      *(inspect.getsource(f) + "\n" for f in helpers + hooks),
+                      *(jit(f, "_fn", f in inl) for f in helpers),
+                      *(jit(f, "_call", False) for f in called),
+                      *hook_jit((f.__name__ for f in hooks), cache)])
 
 
 SAMPLE_STUB = '''

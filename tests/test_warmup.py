@@ -106,3 +106,25 @@ def test_eros_descent_kernel_has_one_specialisation() -> None:
                       {"case_phase": 0.3, "nav_ids": [5, 9]})):
         simulate_descent(e0, np.zeros((2, 3)), descent_gains(), opts, **kw)
     _one_specialisation(K.kernel_module().kernel)
+
+
+def _scale(x):
+    return SCALE * x  # noqa: F821  (a constant of the generated module)
+
+
+def sys_twice(x):
+    return _scale_fn(x) + _scale_call(x)  # noqa: F821
+
+
+def test_hooks_text_compiles_each_helper_as_asked() -> None:
+    """The one hook builder of every system: constants, sources, a helper as ``<name>_fn``
+    (numba-inlined only when asked) and as ``<name>_call`` (a plain call), the hooks last."""
+    from lgw.sim import integrate, kernel_cache
+
+    text = "import numba\n" + integrate.hooks_text([sys_twice], [_scale], consts={"SCALE": 3.0},
+                                                     inline=[_scale], called=[_scale])
+    mod = kernel_cache.load_module(f"test_hooks_text_{kernel_cache.key([text])}", lambda: text)
+    assert mod.sys_twice(1.5) == 9.0
+    assert mod._scale_fn.targetoptions.get("inline") == "always"
+    assert mod._scale_call.targetoptions.get("inline", "never") == "never"
+    assert mod.sys_twice.targetoptions.get("inline", "never") == "never"

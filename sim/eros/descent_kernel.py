@@ -48,7 +48,6 @@ and m (N, KR)); histories after the end are NaN.
 from __future__ import annotations
 
 import functools
-import inspect
 import math
 
 NY = 22
@@ -433,15 +432,10 @@ def hooks_source() -> str:
     """The hooks as written into the kernel module: the tracking kernel's shared helpers
     (clearance bound, one axis's control and surface), this module's helpers and hooks."""
     from lgw.sim.eros import kernel as KN
-    from lgw.sim.integrate import hook_jit
+    from lgw.sim.integrate import hooks_text
 
     shared = (KN._inside, KN._clearance, KN._u_axis, KN._s_axis)
-    src = [inspect.getsource(f) + "\n" for f in shared + HELPERS + HOOKS]
-    inline = (KN._u_axis, KN._s_axis)
-    jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True"
-            + (", inline='always')" if f in inline else ")") for f in shared + HELPERS]
-           + hook_jit(f.__name__ for f in HOOKS))
-    return "\n".join([*(f"{k} = {v!r}" for k, v in SLOTS.items()), "", *src, *jit])
+    return hooks_text(HOOKS, shared + HELPERS, consts=SLOTS, inline=(KN._u_axis, KN._s_axis))
 
 
 HEADER_IMPORTS = ("from lgw.sim.eros.polygrav import poly_field",

@@ -42,7 +42,6 @@ pos (N, 3), vel (N, 3)).
 from __future__ import annotations
 
 import functools
-import inspect
 import math
 
 import numpy as np
@@ -165,15 +164,8 @@ def _contact(y, S, Q):  # noqa: N803
 def _u_axis(lawc, swc, e, ed, f, dk, xdd, d, gv, out):
     """One axis of the generated control (lgw.theory.eros.laws.control): the variant picked
     by the law and switch codes, gains gv in the order of lgw.sim.eros.laws.GAIN_ARGS."""
-    alpha = gv[0]
-    beta = gv[1]
-    r = gv[2]
-    kk = gv[3]
-    lam = gv[4]
-    N = gv[5]
-    M = gv[6]
-    phi = gv[7]
-    ef = gv[8]
+    alpha, beta, r, kk, lam, N, M, phi, ef = (gv[0], gv[1], gv[2], gv[3], gv[4], gv[5],  # noqa: N806
+                                              gv[6], gv[7], gv[8])
     if lawc == 0:
         if swc == 0:
             u_pdsmc_sign(e, ed, f, dk, xdd, d, alpha, beta, r, kk, lam, N, M, phi, ef,  # noqa
@@ -350,12 +342,8 @@ SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY":
 
 def hooks_source() -> str:
     """The hooks as written into a kernel module, with their slots."""
-    from lgw.sim.integrate import hook_jit
-    src = [inspect.getsource(f) + "\n" for f in HELPERS + HOOKS]
-    jit = ([f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy', cache=True"
-            + (", inline='always')" if f in INLINE else ")") for f in HELPERS]
-           + hook_jit(f.__name__ for f in HOOKS))
-    return "\n".join([*(f"{k} = {v!r}" for k, v in SLOTS.items()), "", *src, *jit])
+    from lgw.sim.integrate import hooks_text
+    return hooks_text(HOOKS, HELPERS, consts=SLOTS, inline=INLINE)
 
 
 def _deps() -> list[str]:

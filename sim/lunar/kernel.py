@@ -28,7 +28,6 @@ the quaternion norm drifting more than the tolerance from 1 is detected at the n
 from __future__ import annotations
 
 import functools
-import inspect
 import math
 
 import numba
@@ -204,12 +203,7 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     (sx, sc, a1, a2, a3, tf, Tmax, Mmax, satc, failc, damp, wn, pointc, J, m_dry,
      qtol) = Q
     y = Y[yr]
-    r = y[0]
-    phi = y[1]
-    u = y[3]
-    v = y[4]
-    w = y[5]
-    m = y[6]
+    r, phi, u, v, w, m = y[0], y[1], y[3], y[4], y[5], y[6]
     # reference (3)-(4): state from the BVP spline, steering angles in closed form
     tcl = min(max(t, 0.0), tf)
     tau = tcl / tf
@@ -635,15 +629,12 @@ CONSTS = {"BLOW_ACC": BLOWUP_ACCEL, "R_MOON": P.R_MOON, "MU_MOON": P.MU_MOON,
 
 def hooks_source() -> str:
     """The hooks as written into a kernel module, with their slots and constants."""
-    from lgw.sim.integrate import hook_jit
-    src = [inspect.getsource(f) + "\n" for f in HOOKS]
-    jit = hook_jit(f.__name__ for f in HOOKS if f is not _node_metrics)
-    return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
-                      "from lgw.sim.lunar.kernel import _cross, _dcm, _mv, _qmul, _spline", "",
-                      *(f"{k} = {v!r}" for k, v in {**SLOTS, **CONSTS}.items()), "",
-                      *src,
-                      "_node_metrics_fn = numba.njit(_node_metrics, error_model='numpy')",
-                      *jit])
+    from lgw.sim.integrate import hooks_text
+    return hooks_text([f for f in HOOKS if f is not _node_metrics], [_node_metrics],
+                      consts={**SLOTS, **CONSTS},
+                      imports=("from lgw.sim.integrate import BISECT_ITERS",
+                               "from lgw.sim.lunar.kernel import _cross, _dcm, _mv, _qmul, "
+                               "_spline"))
 
 
 def _deps() -> list[str]:

@@ -20,7 +20,6 @@ R = the first ``len(RESULT_FIELDS)`` arrays of ``lgw.sim.mars.batch.ARRAY_FIELDS
 from __future__ import annotations
 
 import functools
-import inspect
 import math
 
 import numba
@@ -473,8 +472,8 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
         # linear between the step's nodes, is > 0, over the part of the step flown (a
         # left-endpoint count would be first order: 0.45 s against 0.475 s at dt/2 on a Table
         # III case)
-        gl = _sat_margin(XL, fmax, lim)
-        gr = _sat_margin(X, fmax, lim)
+        gl = _sat_margin_fn(XL, fmax, lim)  # noqa: F821
+        gr = _sat_margin_fn(X, fmax, lim)  # noqa: F821
         if gl > 0.0 and gr > 0.0:
             S[TSAT] += frac * h
         elif gl > 0.0 or gr > 0.0:
@@ -556,11 +555,11 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
 
 HOOKS = (sys_init, sys_rhs, _sat_margin, _arrival, _impact, _ground, sys_start, sys_step,
          sys_finish)
-COMPILED_APART = (_arrival, _impact, _ground)  # called, not inlined: "<name>_fn"
+COMPILED_APART = (_sat_margin, _arrival, _impact, _ground)  # helpers, called: "<name>_fn"
 # the hooks compiled into each law's kernel module (the vector field calls the law; it and the
-# step hook are inlined, lgw.sim.integrate.INLINED_HOOKS, with the step's helper _sat_margin);
-# the others do not depend on the law and live in one shared module (``hooks_module``)
-KERNEL_HOOKS = (sys_rhs, _sat_margin, sys_step)
+# step hook are inlined, lgw.sim.integrate.INLINED_HOOKS); the others, and the helpers, do not
+# depend on the law and live in one shared module (``hooks_module``)
+KERNEL_HOOKS = (sys_rhs, sys_step)
 SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "ZMIN": ZMIN,
          "GROUND": GROUND, "LANDED": LANDED, "DRY": DRY, "TLAND": TLAND, "BLOWN": BLOWN,
          "PKS": PKS, "PKUS": PKUS, "PKA": PKA, "XPK": XPK, "XPKU": XPKU, "XBLOWN": XBLOWN,
@@ -569,16 +568,11 @@ SLOTS = {"TF": TF, "TX": TX, "SOLD": SOLD, "PK": PK, "PKU": PKU, "TSAT": TSAT, "
 
 def hooks_source(hooks=HOOKS, cache: bool = False) -> str:
     """``hooks`` as written into a generated module, with the tracker slots they use."""
-    from lgw.sim.integrate import hook_jit
-    slots = "\n".join(f"{k} = {v}" for k, v in SLOTS.items())
-    opts = ", cache=True" if cache else ""
-    return "\n".join(["from lgw.sim.integrate import BISECT_ITERS",
-                      "from lgw.sim.mars.kernel import _drag, _drag_fac", "", slots, "",
-                      *(inspect.getsource(f) + "\n" for f in hooks),
-                      *(f"{f.__name__}_fn = numba.njit({f.__name__}, error_model='numpy'{opts})"
-                        for f in hooks if f in COMPILED_APART),
-                      *hook_jit((f.__name__ for f in hooks if f not in COMPILED_APART), cache,
-                                inline=("_sat_margin",))])
+    from lgw.sim.integrate import hooks_text
+    return hooks_text([f for f in hooks if f not in COMPILED_APART],
+                      [f for f in hooks if f in COMPILED_APART], consts=SLOTS, cache=cache,
+                      imports=("from lgw.sim.integrate import BISECT_ITERS",
+                               "from lgw.sim.mars.kernel import _drag, _drag_fac"))
 
 
 # --- assembly -------------------------------------------------------------------------------
