@@ -102,3 +102,7 @@ def main(args: list[str] | None = None) -> None:
         sys.exit(EXIT_SOFTWARE)
     if isinstance(rc, int) and rc:
         sys.exit(rc)
+
+
+if __name__ == "__main__":  # python -m lgw.tuning.cli: the same as the lgw executable
+    main()
