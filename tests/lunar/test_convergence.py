@@ -131,3 +131,17 @@ def test_the_command_filter_azimuth_takes_the_short_way():
 def test_campaign_dt_is_a_documented_choice():
     assert SP.DT_CAMPAIGN == 2 * SP.DT
     assert RunOptions().dt == SP.DT and replace(RunOptions(), dt=SP.DT_CAMPAIGN).dt > 0
+
+
+def test_report_bounds_table_quotes_the_kernels_l2_of_the_torque_deficit():
+    """The report's measured ||B0 du||_L2 rows are the kernel's integral over every step (the
+    converged number), not a sum over the 0.1 s records, which miss the initial transient of
+    the attitude deficit (300 against 142.7 in Section 5)."""
+    from lgw.theory.lunar.gains import paper_gains
+    from lgw.tuning.lunar.report_sections import bounds_table
+
+    f = fly_section5(check=False)
+    b, _ = bounds_table(paper_gains(), (f.res, f.ctx))
+    for col in ("orbit", "attitude"):
+        assert b[col]["B0du_L2"] == pytest.approx(f.res.cases[f"B0du_{col}_L2"][0], rel=1e-12)
+    assert b["orbit"]["lambda2_L2_bound"] == pytest.approx(b["orbit"]["B0du_L2"])  # c2 = 1
