@@ -71,7 +71,7 @@ def mars_flights(n: int, seed: int, thrust_max: float | None):
         code, t = res.outcomes()
         return np.array(OUTCOMES, dtype=object)[code], np.asarray(t, float)
 
-    return fly, DT_DEFAULT
+    return fly, DT_DEFAULT, camp.T_MAX
 
 
 def lunar_flights(n: int, seed: int, chunk: int = 500):
@@ -102,7 +102,7 @@ def lunar_flights(n: int, seed: int, chunk: int = 500):
             tout[sel] = res.cases["t_outcome"]
         return out, tout
 
-    return fly, dt0
+    return fly, dt0, t_end
 
 
 def eros_flights(n: int, seed: int, batch: int = 50):
@@ -139,17 +139,17 @@ def eros_flights(n: int, seed: int, batch: int = 50):
             tout[sel] = res.t_outcome
         return out, tout
 
-    return fly, h0
+    return fly, h0, max(b[2].t_final for b in batches)
 
 
 def agreement(system: str, n: int, seed: int, thrust_max: float | None) -> dict:
     t0 = time.perf_counter()
     if system == "mars":
-        fly, h = mars_flights(n, seed, thrust_max)
+        fly, h, t_max = mars_flights(n, seed, thrust_max)
     elif system == "lunar":
-        fly, h = lunar_flights(n, seed)
+        fly, h, t_max = lunar_flights(n, seed)
     else:
-        fly, h = eros_flights(n, seed)
+        fly, h, t_max = eros_flights(n, seed)
     idx = np.arange(n)
     rk, rk_t = fly(idx, None)
     dp, dp_t = fly(idx, None, "dopri5")
@@ -169,7 +169,7 @@ def agreement(system: str, n: int, seed: int, thrust_max: float | None) -> dict:
         final_t[ref.cases[pos]] = t
     after = final == classes(dp)
     pairs = Counter((a, b) for a, b in zip(final[~after], classes(dp)[~after], strict=True))
-    return {"system": system, "n": n, "dt": h, "before": int(before.sum()),
+    return {"system": system, "n": n, "dt": h, "t_max": t_max, "before": int(before.sum()),
             "after": int(after.sum()), "refined": len(ref.cases),
             "settled": int(ref.settled.sum()),
             "steps": Counter(f"{x:g}" for x in ref.dt), "pairs": pairs,
@@ -232,10 +232,12 @@ def agreement_figure(r: dict, seed: int, path: Path):
         # times below a hundredth of the RK4 step (0 included: a state refused at the start,
         # or blown up in its first step) are not resolved by it: drawn at that floor
         floor = r["dt"] / 100
-        hi = max(float(np.max(pos)) * 3, 10 * floor) if pos.size else 10 * floor
+        # and times beyond the horizon (mars adversarial states report up to 1e45 s) at 3x it
+        ceil = 3 * r.get("t_max", np.inf)
+        hi = min(max(float(np.max(pos)) * 3, 10 * floor), ceil) if pos.size else 10 * floor
 
         def shown(t):
-            return np.maximum(t, floor)
+            return np.clip(t, floor, hi)
 
         ax.plot([floor, hi], [floor, hi], color="0.6", lw=0.8, zorder=0)
         for k in np.flatnonzero(refd & known):  # default-step time -> refined time
@@ -268,7 +270,7 @@ def agreement_figure(r: dict, seed: int, path: Path):
         ax.set_ylim(floor / 1.5, hi)
         ax.set_xlabel("dopri5: time of the outcome (s)")
         ax.set_ylabel("RK4: time of the outcome (s)")
-        ax.set_title(f"outcome time per case (t < dt/100 drawn at {floor:.2g} s)"
+        ax.set_title(f"outcome time per case (clipped to [{floor:.2g}, {hi:.2g}] s)"
                      + (f", {int(np.sum(~known))} without a time" if np.any(~known) else ""))
         ax.legend(loc="upper left", fontsize=8)
         bef, aft = r["before"], r["after"]
