@@ -18,6 +18,12 @@ is flown at a quarter, an eighth, ... until two successive steps agree (at most
 REFINE_HALVINGS halvings), and its RK4 outcome is the settled one.  Printed per system: the
 agreement before and after, the cases refined and settled, and the disagreeing pairs left.
 Seeded; the output is the same on every run.
+
+Figures (``--out DIR``, default out/agreement/; ``--no-figures`` to skip): one PNG per system,
+``agreement_<system>.png``: the outcome classes of RK4 (rows) against dopri5 (columns), counts,
+before and after refinement side by side (the diagonal is the agreement the table prints), and
+each case's outcome time, RK4 against dopri5 on log scales, the disagreeing cases in red, the
+refined ones drawn at their refined time with a line from their default-step time.
 """
 
 from __future__ import annotations
@@ -62,9 +68,10 @@ def mars_flights(n: int, seed: int, thrust_max: float | None):
     def fly(idx: np.ndarray, h: float | None, method: str = "rk4") -> np.ndarray:
         res = simulate_batch(r0[idx], v0[idx], m0[idx], g, method=method,
                              dt=DT_DEFAULT if h is None else h, **kw)
-        return np.array(OUTCOMES, dtype=object)[res.outcomes()[0]]
+        code, t = res.outcomes()
+        return np.array(OUTCOMES, dtype=object)[code], np.asarray(t, float)
 
-    return fly, DT_DEFAULT
+    return fly, DT_DEFAULT, camp.T_MAX
 
 
 def lunar_flights(n: int, seed: int, chunk: int = 500):
@@ -77,8 +84,9 @@ def lunar_flights(n: int, seed: int, chunk: int = 500):
               for s in range(0, n, chunk)]
     dt0 = chunks[0][0].opts.dt
 
-    def fly(idx: np.ndarray, h: float | None, method: str = "rk4") -> np.ndarray:
+    def fly(idx: np.ndarray, h: float | None, method: str = "rk4"):
         out = np.empty(len(idx), dtype=object)
+        tout = np.full(len(idx), np.nan)
         for c, (ctx, X0) in enumerate(chunks):
             lo = c * chunk
             sel = np.flatnonzero((idx >= lo) & (idx < lo + X0.shape[1]))
@@ -91,9 +99,10 @@ def lunar_flights(n: int, seed: int, chunk: int = 500):
                 res = simulate(sub_ctx, sub_X0, method=method, record=False,
                                max_steps=5000, **adv.DOPRI)
             out[sel] = np.array(OUTCOMES, dtype=object)[res.cases["outcome"]]
-        return out
+            tout[sel] = res.cases["t_outcome"]
+        return out, tout
 
-    return fly, dt0
+    return fly, dt0, t_end
 
 
 def eros_flights(n: int, seed: int, batch: int = 50):
@@ -113,8 +122,9 @@ def eros_flights(n: int, seed: int, batch: int = 50):
         batches.append((s, g, opts, e0, ed0, rng.uniform(0, 2 * np.pi, k)))
     h0 = batches[0][2].dt / batches[0][2].n_sub  # the RK4 step: n_sub per sample
 
-    def fly(idx: np.ndarray, h: float | None, method: str = "rk4") -> np.ndarray:
+    def fly(idx: np.ndarray, h: float | None, method: str = "rk4"):
         out = np.empty(len(idx), dtype=object)
+        tout = np.full(len(idx), np.nan)
         for s, g, opts, e0, ed0, ph in batches:
             sel = np.flatnonzero((idx >= s) & (idx < s + len(e0)))
             if not len(sel):
@@ -126,41 +136,158 @@ def eros_flights(n: int, seed: int, batch: int = 50):
             with np.errstate(all="ignore"):
                 res = simulate(e0[j], ed0[j], g, o, ph[j])
             out[sel] = np.array(OUTCOMES, dtype=object)[res.outcome]
-        return out
+            tout[sel] = res.t_outcome
+        return out, tout
 
-    return fly, h0
+    return fly, h0, max(b[2].t_final for b in batches)
 
 
 def agreement(system: str, n: int, seed: int, thrust_max: float | None) -> dict:
     t0 = time.perf_counter()
     if system == "mars":
-        fly, h = mars_flights(n, seed, thrust_max)
+        fly, h, t_max = mars_flights(n, seed, thrust_max)
     elif system == "lunar":
-        fly, h = lunar_flights(n, seed)
+        fly, h, t_max = lunar_flights(n, seed)
     else:
-        fly, h = eros_flights(n, seed)
+        fly, h, t_max = eros_flights(n, seed)
     idx = np.arange(n)
-    rk = fly(idx, None)
-    dp = fly(idx, None, "dopri5")
+    rk, rk_t = fly(idx, None)
+    dp, dp_t = fly(idx, None, "dopri5")
     before = classes(rk) == classes(dp)
-    half = fly(idx, h / 2)
+    half, _ = fly(idx, h / 2)
 
     def fly_at(cases: np.ndarray, step: float):
-        names = fly(cases, step)
-        return classes(names), names
+        names, t = fly(cases, step)
+        return classes(names), t
 
     # refine on the class (what the agreement is measured on); the outcome names follow
     ref = refine_outcomes(fly_at, classes(rk), classes(half), h)
     final = classes(rk).copy()
     final[ref.cases] = ref.codes
+    final_t = rk_t.copy()
+    for pos, _, t in ref.results:  # in order of refinement: each case's last flight wins
+        final_t[ref.cases[pos]] = t
     after = final == classes(dp)
     pairs = Counter((a, b) for a, b in zip(final[~after], classes(dp)[~after], strict=True))
-    return {"system": system, "n": n, "dt": h, "before": int(before.sum()),
+    return {"system": system, "n": n, "dt": h, "t_max": t_max, "before": int(before.sum()),
             "after": int(after.sum()), "refined": len(ref.cases),
             "settled": int(ref.settled.sum()),
             "steps": Counter(f"{x:g}" for x in ref.dt), "pairs": pairs,
             "rk4": Counter(rk.tolist()), "dopri5": Counter(dp.tolist()),
+            "per_case": {"rk4": classes(rk), "dopri5": classes(dp), "refined": final,
+                         "t_rk4": rk_t, "t_dopri5": dp_t, "t_refined": final_t,
+                         "refined_cases": np.asarray(ref.cases, int)},
             "seconds": time.perf_counter() - t0}
+
+
+def confusion(rows: np.ndarray, cols: np.ndarray, labels: list[str]) -> np.ndarray:
+    """Counts of (row class, column class) pairs: M[i, j] = #{k: rows[k] = labels[i] and
+    cols[k] = labels[j]}."""
+    pos = {c: i for i, c in enumerate(labels)}
+    M = np.zeros((len(labels), len(labels)), int)
+    for a, b in zip(rows, cols, strict=True):
+        M[pos[a], pos[b]] += 1
+    return M
+
+
+def agreement_figure(r: dict, seed: int, path: Path):
+    """One system's agreement figure (module docstring), written to ``path`` (PNG); returns
+    the confusion matrices as drawn, read back from the count labels on the figure:
+    {"labels": classes, "before": M, "after": M} (rows RK4, columns dopri5)."""
+    from lgw.tuning.figures import png_bytes, save_png, styled
+
+    pc = r["per_case"]
+    n = r["n"]
+    labels = sorted(set(pc["rk4"]) | set(pc["dopri5"]) | set(pc["refined"]))
+    mats = {"before": confusion(pc["rk4"], pc["dopri5"], labels),
+            "after": confusion(pc["refined"], pc["dopri5"], labels)}
+    with styled() as plt:
+        fig, axes = plt.subplots(1, 3, figsize=(15.5, 5.6),
+                                 gridspec_kw={"width_ratios": [1, 1, 1.25]})
+        for ax, (key, M) in zip(axes[:2], mats.items(), strict=True):
+            agree = int(np.trace(M))
+            ax.imshow(np.log1p(M), cmap="Blues", vmin=0, vmax=np.log1p(max(n, 1)))
+            for i in range(len(labels)):
+                for j in range(len(labels)):
+                    if M[i, j]:
+                        ax.text(j, i, str(M[i, j]), ha="center", va="center", gid="count",
+                                color="white" if M[i, j] > 0.3 * n else
+                                ("black" if i == j else "#b00000"), fontsize=10)
+            ax.set_xticks(range(len(labels)), labels, rotation=35, ha="right")
+            ax.set_yticks(range(len(labels)), labels)
+            ax.set_xlabel("dopri5 outcome")
+            ax.set_ylabel("RK4 outcome" + (" (refined)" if key == "after" else ""))
+            ax.set_title(f"{key} refinement: {agree}/{n} agree ({100 * agree / n:.2f} %)")
+            ax.grid(False)
+        ax = axes[2]
+        t_rk, t_dp, t_fin = (np.asarray(pc[k], float) for k in ("t_rk4", "t_dopri5",
+                                                                   "t_refined"))
+        refd = np.zeros(n, bool)
+        refd[pc["refined_cases"]] = True
+        t_rk_shown = np.where(refd, t_fin, t_rk)  # a refined case at its refined time
+        dis = pc["refined"] != pc["dopri5"]
+        known = np.isfinite(t_rk_shown) & np.isfinite(t_dp)
+        every = np.concatenate([t_rk, t_dp, t_fin])
+        pos = every[np.isfinite(every) & (every > 0)]
+        # times below a hundredth of the RK4 step (0 included: a state refused at the start,
+        # or blown up in its first step) are not resolved by it: drawn at that floor
+        floor = r["dt"] / 100
+        # and times beyond the horizon (mars adversarial states report up to 1e45 s) at 3x it
+        ceil = 3 * r.get("t_max", np.inf)
+        hi = min(max(float(np.max(pos)) * 3, 10 * floor), ceil) if pos.size else 10 * floor
+
+        def shown(t):
+            return np.clip(t, floor, hi)
+
+        ax.plot([floor, hi], [floor, hi], color="0.6", lw=0.8, zorder=0)
+        for k in np.flatnonzero(refd & known):  # default-step time -> refined time
+            ax.plot([shown(t_dp[k])] * 2, [shown(t_rk[k]), shown(t_fin[k])], color="k", lw=0.8)
+
+        def cloud(mask, **kw):
+            """Coincident cases (same times to 0.01 decades) as one marker, area ~ count."""
+            xy = np.column_stack([shown(t_dp[mask]), shown(t_rk_shown[mask])])
+            if not len(xy):
+                ax.scatter([], [], **kw)
+                return
+            keys, inv, cnt = np.unique(np.round(np.log10(xy), 2), axis=0,
+                                       return_inverse=True, return_counts=True)
+            first = np.array([np.flatnonzero(inv.ravel() == q)[0] for q in range(len(keys))])
+            ax.scatter(xy[first, 0], xy[first, 1], s=12 + 10 * np.sqrt(cnt), **kw)
+            for (x, y), c in zip(xy[first], cnt, strict=True):
+                if c > 1:
+                    ax.annotate(str(c), (x, y), xytext=(4, 3), textcoords="offset points",
+                                fontsize=7, color=kw.get("color", "k"))
+
+        cloud(known & ~dis & ~refd, color="#2166ac", alpha=0.6,
+              label=f"same class ({int(np.sum(~dis & ~refd))})")
+        cloud(known & refd, facecolors="none", edgecolors="k",
+              label=f"refined ({int(refd.sum())}): at the refined time, line from dt's")
+        cloud(known & dis, marker="x", color="#b00000",
+              label=f"classes differ after refinement ({int(dis.sum())})")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlim(floor / 1.5, hi)
+        ax.set_ylim(floor / 1.5, hi)
+        ax.set_xlabel("dopri5: time of the outcome (s)")
+        ax.set_ylabel("RK4: time of the outcome (s)")
+        ax.set_title(f"outcome time per case (clipped to [{floor:.2g}, {hi:.2g}] s)"
+                     + (f", {int(np.sum(~known))} without a time" if np.any(~known) else ""))
+        ax.legend(loc="upper left", fontsize=8)
+        bef, aft = r["before"], r["after"]
+        fig.suptitle(f"{r['system']}: RK4 (dt = {r['dt']:g} s) against dopri5 on {n} adversarial "
+                     f"cases, seed {seed}: outcome-class agreement {100 * bef / n:.2f} % before, "
+                     f"{100 * aft / n:.2f} % after refinement")
+        fig.tight_layout()
+        drawn = {}
+        for ax_, key in zip(axes[:2], mats, strict=True):
+            D = np.zeros_like(mats[key])
+            for txt in ax_.texts:
+                if txt.get_gid() == "count":
+                    x, y = txt.get_position()
+                    D[int(round(y)), int(round(x))] = int(txt.get_text())
+            drawn[key] = D
+        save_png(png_bytes(fig), path)
+    return {"labels": labels, **drawn}
 
 
 def main() -> None:
@@ -169,6 +296,9 @@ def main() -> None:
     ap.add_argument("--cases", type=int, default=2000)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--thrust-max", type=float, default=None, help="mars only (N per axis)")
+    ap.add_argument("--out", type=Path, default=Path("out/agreement"),
+                    help="directory of the figures (agreement_<system>.png)")
+    ap.add_argument("--no-figures", action="store_true", help="print the tables only")
     args = ap.parse_args()
     for system in args.systems.split(","):
         r = agreement(system.strip(), args.cases, args.seed, args.thrust_max)
@@ -187,6 +317,10 @@ def main() -> None:
               f"({100 * r['after'] / n:.2f} %)")
         for (a, b), c in r["pairs"].most_common():
             print(f"    left: RK4 {a} / dopri5 {b}: {c}")
+        if not args.no_figures:
+            path = args.out / f"agreement_{system.strip()}.png"
+            agreement_figure(r, args.seed, path)
+            print(f"  figure: {path}")
 
 
 if __name__ == "__main__":

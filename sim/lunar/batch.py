@@ -292,3 +292,73 @@ def warmup_kernels() -> list[tuple[str, object]]:
         simulate(ctx, X0, parallel=False)
 
     return [("lunar", build)]
+
+
+# the integrands solve_ivp_numbers carries as extra states, in order: |B0 du|^2 of both loops
+# and the indicators of the saturated time (all, and the orbit's after t_after)
+_QUAD = ("B0du_orbit_L2", "B0du_attitude_L2", "orbit_saturated_s", "torque_saturated_s",
+         "orbit_saturated_after_failure_s")
+
+
+def solve_ivp_numbers(ctx: Context, x0: np.ndarray, rtol: float = 1e-8, atol: float = 1e-8,
+                      method: str = "DOP853") -> tuple[dict, object]:
+    """The quoted numbers of one case (``lgw.sim.lunar.convergence.QUOTED``, the keys of
+    ``lgw.sim.lunar.scenario.case_numbers``) from a tight adaptive ``solve_ivp`` of the compiled
+    vector field, an integrator independent of the kernel's RK4 and dopri5.
+
+    The integrals (the L2 norms of B0 du, int |B0 du|^2 dt; the times saturated, the integral of
+    the saturation indicator) are extra states of the ODE, so they are integrated by the same
+    steps and stages as the loop, not summed over samples; they are left out of the error
+    control (atol 1e30: their integrands are discontinuous at every saturation switch, and
+    their own error does not feed back into the loop).  Maxima and minima are over the accepted
+    steps (the kernel's are over its nodes).  Returns (numbers, the solve_ivp result)."""
+    from lgw.sim.lunar import kernel as K
+
+    o = ctx.opts
+    t_end = ctx.tf if o.t_end is None else o.t_end
+    C, Q = _kernel_inputs(ctx, x0[:, None])
+    t_after = float(C[11][0])
+    rhs = K.kernel_module().sys_rhs
+    nq = len(_QUAD)
+    Y = np.zeros((1, K.NY))
+    Kk = np.zeros((1, K.NY))
+    X = np.zeros(K.NX)
+
+    def aux(t, x):
+        Y[0] = x[:K.NY]
+        rhs(t, Y, 0, Kk, 0, X, 0, C, Q)
+        return X
+
+    def f(t, x):
+        X = aux(t, x)
+        q = (X[36] ** 2 + X[37] ** 2 + X[38] ** 2, X[39] ** 2 + X[40] ** 2 + X[41] ** 2,
+             X[22], X[23], X[22] * (t >= t_after))
+        return np.concatenate([Kk[0], q])
+
+    z0 = np.concatenate([x0, np.zeros(nq)])
+    at = np.concatenate([np.full(K.NY, atol), np.full(nq, 1e30)])
+    sol = solve_ivp(f, (0.0, t_end), z0, method=method, rtol=rtol, atol=at)
+    y = sol.y[:, -1]
+    rs = ctx.ref.state(t_end)
+    ev = y[3:6] - rs[1:4]
+    eh = np.empty(sol.t.size)
+    eq0 = np.empty(sol.t.size)
+    tcmd = np.empty(sol.t.size)
+    for j, t in enumerate(sol.t):  # the node signals, as the kernel's trackers see them
+        Xj = aux(t, sol.y[:, j])
+        eh[j], eq0[j], tcmd[j] = Xj[0], Xj[7], Xj[15]
+    after = sol.t >= t_after
+    q = dict(zip(_QUAD, y[K.NY:], strict=True))
+    n = {"eh_final_m": float(y[0] - rs[0]), "ev_final_norm_m_s": float(np.linalg.norm(ev)),
+         "max_abs_eh_m": float(np.max(np.abs(eh))),
+         "max_abs_eh_after_failure_m": float(np.max(np.abs(eh[after]))) if after.any()
+         else float("nan"),
+         "thrust_cmd_max_after_failure_N": float(np.max(tcmd[after])) if after.any()
+         else float("nan"),
+         "min_abs_eq0": float(np.min(np.abs(eq0))),
+         "d0e_orbit_final": float(y[11]), "d0e_attitude_final": float(y[25]),
+         "B0du_orbit_L2": float(np.sqrt(q["B0du_orbit_L2"])),
+         "B0du_attitude_L2": float(np.sqrt(q["B0du_attitude_L2"])),
+         **{k: float(q[k]) for k in _QUAD[2:]},
+         "evaluations": int(sol.nfev), "steps": int(sol.t.size - 1)}
+    return n, sol

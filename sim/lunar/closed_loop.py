@@ -13,7 +13,10 @@ Departures from the paper, each needed to run it, each documented:
   as the paper says, passed through a second-order command filter (natural frequency
   ``cmd_wn``, damping ``lgw.sim.lunar.parameters.CMD_ZETA``) so that omega_d and omega_d' exist
   and are exact: the paper's (27) needs them but does not say how they are obtained.  The
-  default bandwidth and why: ``lgw.sim.lunar.parameters.CMD_WN``.
+  default bandwidth and why: ``lgw.sim.lunar.parameters.CMD_WN``.  The filter's input is the
+  commanded azimuth the short way round from its state (psi_f + wrap(psi_c - psi_f)): atan2
+  is cut at +-pi, and a command crossing the cut would otherwise be a 2 pi step into the
+  filter, a full turn of the desired attitude for no change of the command.
 - n_do uses the derived sign (claim attitude-27b).
 - u_o of (23) is the actual thrust vector (actual T, alpha_B, psi_B from the attitude) minus
   u_norm, so du of (11) contains the pointing error as well as saturation and failure.
@@ -188,7 +191,8 @@ def field(t: float, X: np.ndarray, ctx: Context, outputs: bool = False):
     ac, pc = desired_direction(total_cmd)
     wn = o.cmd_wn
     afdd = wn * wn * (ac - af) - 2 * ZETA * wn * afd
-    pfdd = wn * wn * (pc - pf) - 2 * ZETA * wn * pfd
+    dp = pc - pf  # the azimuth error the short way round (atan2 wraps at +-pi)
+    pfdd = wn * wn * np.arctan2(np.sin(dp), np.cos(dp)) - 2 * ZETA * wn * pfd
     th, thd, thdd = -af, -afd, -afdd
     Qd = PL.quat_from_yaw_pitch(pf, th)
     wd = np.array([-pfd * np.sin(th), thd, pfd * np.cos(th)])

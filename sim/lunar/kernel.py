@@ -71,7 +71,7 @@ NS = 27
 # over the accepted nodes from t_after (C) on (NaN: the case stopped before t_after);
 # max_abs_eh, max_abs_ev, min_abs_eq0: over the accepted nodes (the Monte Carlo statistics, no
 # records); B0du_orbit_L2, B0du_attitude_L2: sqrt of the integral of |B0 du|^2 over the flight
-# (left-node rule on every accepted step; the inputs of (18))
+# (trapezoidal rule on every accepted step; the inputs of (18))
 RESULT_FIELDS = ("outcome", "t_outcome", "peak_thrust", "peak_thrust_cmd", "peak_torque",
                  "time_saturated_orbit", "time_saturated_torque", "sat_entries",
                  "sat_first_entry", "sat_last_exit", "t_failure", "thrust_excess_saturated",
@@ -323,7 +323,9 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     ac = math.asin(min(max(c2 / cn, -1.0), 1.0))
     pc = math.atan2(c1 / cn, c0 / cn)
     afdd = wn * wn * (ac - af) - 2 * ZETA * wn * afd  # noqa: F821
-    pfdd = wn * wn * (pc - pf) - 2 * ZETA * wn * pfd  # noqa: F821
+    dp = pc - pf  # the azimuth error the short way round: atan2 wraps at +-pi
+    dp = math.atan2(math.sin(dp), math.cos(dp))
+    pfdd = wn * wn * dp - 2 * ZETA * wn * pfd  # noqa: F821
     th = -af
     thd = -afd
     thdd = -afdd
@@ -483,8 +485,13 @@ def _node_metrics(t, XL, X, S, C, Q, frac, h):  # noqa: N803
     S[EHMAX] = max(S[EHMAX], eh)  # noqa: F821
     S[EVMAX] = max(S[EVMAX], ev)  # noqa: F821
     S[MINEQ0] = min(S[MINEQ0], abs(XL[7]))  # noqa: F821
-    S[L2BO] += frac * h * (XL[36] * XL[36] + XL[37] * XL[37] + XL[38] * XL[38])  # noqa: F821
-    S[L2BA] += frac * h * (XL[39] * XL[39] + XL[40] * XL[40] + XL[41] * XL[41])  # noqa: F821
+    # trapezoidal rule on a whole step (X: the aux at its right node), the left node on the
+    # part of a step before an event inside it (X is not at the event)
+    wr = 0.5 if frac >= 1.0 else 0.0
+    S[L2BO] += frac * h * ((1.0 - wr) * (XL[36] * XL[36] + XL[37] * XL[37] + XL[38] * XL[38])  # noqa: F821
+                           + wr * (X[36] * X[36] + X[37] * X[37] + X[38] * X[38]))
+    S[L2BA] += frac * h * ((1.0 - wr) * (XL[39] * XL[39] + XL[40] * XL[40] + XL[41] * XL[41])  # noqa: F821
+                           + wr * (X[39] * X[39] + X[40] * X[40] + X[41] * X[41]))
     if t >= S[TAFT]:  # noqa: F821  (after the failure: from t_after on)
         if math.isnan(S[TSOAF]):  # noqa: F821
             S[TSOAF] = 0.0  # noqa: F821

@@ -17,8 +17,9 @@ from lgw.sim.lunar.closed_loop import RunOptions
 from lgw.sim.lunar.scenario import fly_section5, section5_case, summarize
 
 # the one quoted number of the coupled Section 5 run that does not converge to 1 % at any
-# practical step (sim/lunar/parameters.py: the torque command chatters on the limit of (28))
-KNOWN_UNCONVERGED = {"coupled": {"B0du_attitude_L2"}, "ideal": set()}
+# step (sim/lunar/parameters.py: the time the torque command of the paper's relay law spends
+# above the limit of (28) while it chatters on it depends on the chattering, not on the flight)
+KNOWN_UNCONVERGED = {"coupled": {"torque_saturated_s"}, "ideal": set()}
 
 
 def test_the_check_flags_a_difference_above_one_percent():
@@ -82,24 +83,65 @@ def test_saturated_time_stops_with_the_case():
 @pytest.mark.slow
 @pytest.mark.parametrize("pointing", ["coupled", "ideal"])
 def test_section5_against_solve_ivp(pointing):
-    """The default RK4 run against scipy's solve_ivp (DOP853, rtol = atol = 1e-6) of the same
-    compiled vector field over the whole run (~3.7 M evaluations, ~10 min: the adaptive step
-    resolves every switch of the relay of (7) once the loop slides on z2 = 0)."""
-    from lgw.sim.lunar.batch import simulate, solve_ivp_compiled
+    """Every quoted number of the default RK4 run against scipy's solve_ivp (DOP853, rtol = atol
+    = 1e-6) of the same compiled vector field over the whole run, the L2 norms and saturated
+    times integrated as extra states (``solve_ivp_numbers``; ~3.8 M evaluations, ~8 min: the
+    adaptive step resolves every switch of the relay of (7) once the loop slides on z2 = 0)."""
+    from lgw.sim.lunar.batch import simulate, solve_ivp_numbers
     from lgw.sim.lunar.scenario import case_numbers
 
     ctx, X0 = section5_case(opts=RunOptions(thrust_pointing=pointing))
     a = case_numbers(simulate(ctx, X0, record=False).cases, ctx)
-    sol = solve_ivp_compiled(ctx, X0[:, 0], rtol=1e-6, atol=1e-6)
+    ref, sol = solve_ivp_numbers(ctx, X0[:, 0], rtol=1e-6, atol=1e-6)
     assert sol.status == 0
-    rs = ctx.ref.state(sol.t[-1])
-    ref = {"eh_final_m": sol.y[0, -1] - rs[0],
-           "ev_final_norm_m_s": float(np.linalg.norm(sol.y[3:6, -1] - rs[1:4]))}
-    c = CV.compare(a, ref, SP.DT, 0.0, "completed", "completed",
-                   {k: CV.QUOTED[k] for k in ref})
-    assert c.converged, [x.to_dict() for x in c.checks]
+    c = CV.compare(a, ref, SP.DT, 0.0, "completed", "completed")
+    assert len(c.checks) == len(CV.QUOTED)
+    bad = {x.name for x in c.checks if not x.converged}
+    assert bad == KNOWN_UNCONVERGED[pointing], [x.to_dict() for x in c.checks]
+
+
+def _fields(t: float, X: np.ndarray, ctx) -> tuple[np.ndarray, np.ndarray]:
+    """y' of one state by the numpy field and by the compiled kernel's sys_rhs."""
+    from lgw.sim.lunar import kernel as K
+    from lgw.sim.lunar.batch import _kernel_inputs
+    from lgw.sim.lunar.closed_loop import field
+
+    C, Q = _kernel_inputs(ctx, X[:, None])
+    Y, Kk, Xa = X[None].copy(), np.zeros((1, K.NY)), np.zeros(K.NX)
+    K.kernel_module().sys_rhs(t, Y, 0, Kk, 0, Xa, 0, C, Q)
+    return field(t, X[:, None], ctx)[:, 0], Kk[0].copy()
+
+
+def test_the_command_filter_azimuth_takes_the_short_way():
+    """The filter state psi_f and psi_f + 2 pi are the same desired attitude, so the loop is
+    the same: the commanded azimuth (atan2, cut at +-pi) enters the filter as the error the
+    short way round.  (Fed the long way, a command crossing +-pi is a 2 pi step into the
+    filter: the desired attitude spun ~290 deg in Section 5 at t = 8.6 s, the attitude error
+    went through 180 deg, and the L2 norm of the torque deficit did not converge.)"""
+    ctx, X0 = section5_case()
+    x = X0[:, 0].copy()
+    for shift in (2 * np.pi, -2 * np.pi, 4 * np.pi):
+        y = x.copy()
+        y[28] += shift
+        for f0, f1 in zip(_fields(1.0, x, ctx), _fields(1.0, y, ctx), strict=True):
+            assert np.allclose(f0, f1, rtol=1e-9, atol=1e-9), (shift, np.flatnonzero(
+                ~np.isclose(f0, f1, rtol=1e-9, atol=1e-9)))
 
 
 def test_campaign_dt_is_a_documented_choice():
     assert SP.DT_CAMPAIGN == 2 * SP.DT
     assert RunOptions().dt == SP.DT and replace(RunOptions(), dt=SP.DT_CAMPAIGN).dt > 0
+
+
+def test_report_bounds_table_quotes_the_kernels_l2_of_the_torque_deficit():
+    """The report's measured ||B0 du||_L2 rows are the kernel's integral over every step (the
+    converged number), not a sum over the 0.1 s records, which miss the initial transient of
+    the attitude deficit (300 against 142.7 in Section 5)."""
+    from lgw.theory.lunar.gains import paper_gains
+    from lgw.tuning.lunar.report_sections import bounds_table
+
+    f = fly_section5(check=False)
+    b, _ = bounds_table(paper_gains(), (f.res, f.ctx))
+    for col in ("orbit", "attitude"):
+        assert b[col]["B0du_L2"] == pytest.approx(f.res.cases[f"B0du_{col}_L2"][0], rel=1e-12)
+    assert b["orbit"]["lambda2_L2_bound"] == pytest.approx(b["orbit"]["B0du_L2"])  # c2 = 1

@@ -219,7 +219,11 @@ def bounds_table(g: Gains, measured=None, run_gains: Gains | None = None):
         for col, key, l1, l2, eq0 in (("orbit", "B0du_o", "lam1o", "lam2o", None),
                                       ("attitude", "B0du_a", "lam1a", "lam2a", True)):
             b = ob if col == "orbit" else ab
-            w = float(l2_norm(t, o[key])[0])
+            # the kernel's integral over every step (the records, every 0.1 s, miss the
+            # fast initial transient of B0 du); from the records only without it
+            k2 = f"B0du_{col}_L2"
+            w = (float(res.cases[k2][0]) if res.cases and k2 in res.cases
+                 else float(l2_norm(t, o[key])[0]))
             f1b = rb[col]["f1bar"]
             if eq0:
                 f1b = float(np.min(np.abs(o["eq"][:, 0, 0]))) ** 2 / 4 * float(
