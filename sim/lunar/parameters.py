@@ -64,11 +64,9 @@ DT_CAMPAIGN = 1.0 / 320.0  # s, chosen (above)
 #   "the control torque saturation occurs initially").
 # CMD_WN is the choice ``lgw.tuning.lunar.design.select_bandwidth`` makes for the paper's gains
 # on the Section 5 scenario (the geometric centre of the widest robust band of its sweep;
-# tests/lunar/test_design.py re-derives it, slow).  That choice was measured before the
-# filter's azimuth took the short way round (``lgw.sim.lunar.closed_loop``); with it the
-# rule's widest band is 10-16 rad/s and its choice 12 rad/s, 30 still robust (docs/lunar.md,
-# "The command filter"): an open decision, CMD_WN unchanged until it is made.  No linear rule
-# gives a band here: the
+# tests/lunar/test_design.py re-derives it, slow): robust points need no orbit-thrust
+# saturation after the failure besides small final errors at dt and dt/2, which leaves the
+# band 30-35 rad/s (docs/lunar.md, "The command filter").  No linear rule gives a band here: the
 # attitude loop's own poles with the paper's gains are 0.30 and 4.95 rad/s and the torque
 # allows ~0.1 rad/s^2, far below what a 20 rad/s translational loop needs (docs/lunar.md).
 CMD_WN = 30.0  # rad/s, chosen (above)

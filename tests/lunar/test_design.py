@@ -43,8 +43,8 @@ def test_failure_offset_matches_the_simulated_final_error():
     assert n["ev_final_norm_m_s"] == pytest.approx(est["ev_m_s"], rel=0.05)
 
 
-def _pt(wn, score, score_fine=None, outcome="completed"):
-    return D.SweepPoint(wn, 0, 0, 0, 0, outcome, outcome, 0, 0, score,
+def _pt(wn, score, score_fine=None, outcome="completed", sat_after=0.0):
+    return D.SweepPoint(wn, 0, 0, 0, 0, outcome, outcome, 0, sat_after, score,
                         score if score_fine is None else score_fine, True)
 
 
@@ -57,6 +57,15 @@ def test_bandwidth_rule_picks_the_centre_of_the_widest_robust_band():
     pts = (_pt(1, 5.0), _pt(2, 1.4), _pt(4, 1.5), _pt(8, 9.0), _pt(16, 1.3))
     bw = D.choose_bandwidth(pts)
     assert bw.band == (2, 4) and bw.best_score == 1.3
+
+
+def test_bandwidth_rule_refuses_a_point_saturated_after_the_failure():
+    """Small final errors do not make a point robust when the orbit thrust rides its limit
+    after the failure (the premise of seed 001's Section 5)."""
+    pts = (_pt(8, 0.3, sat_after=84.0), _pt(12, 0.3, sat_after=2.0), _pt(16, 0.3, sat_after=0.5),
+           _pt(25, 0.6, sat_after=56.0), _pt(30, 0.6), _pt(35, 0.6))
+    bw = D.choose_bandwidth(pts)
+    assert bw.band == (30, 35) and bw.wn == 30 and bw.robust == (30, 35)
 
 
 @pytest.mark.slow

@@ -200,7 +200,8 @@ class Bandwidth:
                 "robust_rad_s": list(self.robust), "best_score": self.best_score,
                 "rule": "widest run of consecutive robust grid points (completed at dt and "
                         "dt/2, both scores max(|e_h|/eh_max, |e_v|/ev_max) <= max(1, "
-                        f"{BAND_SCORE:g} x the best)); wn = its grid point nearest the band's "
+                        f"{BAND_SCORE:g} x the best), orbit thrust never saturated after the "
+                        "failure); wn = its grid point nearest the band's "
                         "geometric centre",
                 "points": [p.to_dict() for p in self.points]}
 
@@ -255,17 +256,21 @@ def sweep_bandwidth(gains: Gains, opts: RunOptions, grid: tuple[float, ...], eh_
 
 def choose_bandwidth(points: tuple[SweepPoint, ...]) -> Bandwidth:
     """The band and wn from a sweep (rule of step 3): a point is robust when the case
-    completes at dt and at dt/2 and both scores are at most S = max(1, BAND_SCORE x the best
-    score of the sweep) (S = 1: the target met at both steps whenever any point meets it);
-    the band is the widest run of consecutive robust points (ties: the better best score),
-    wn its point nearest the band's geometric centre."""
+    completes at dt and at dt/2, both scores are at most S = max(1, BAND_SCORE x the best
+    score of the sweep) (S = 1: the target met at both steps whenever any point meets it)
+    and the orbit thrust is never saturated after the failure (seed 001's Section 5 claims
+    the remaining thrust suffices: a filter that makes the vehicle lean on the limit after
+    the failure fails the paper's premise however small its final errors); the band is the
+    widest run of consecutive robust points (ties: the better best score), wn its point
+    nearest the band's geometric centre."""
     done = [p for p in points if math.isfinite(p.score)]
     if not done:
         return Bandwidth(points, None, None, None)
     best = min(p.score for p in done)
     cap = max(1.0, BAND_SCORE * best)
     ok = [p.outcome == p.outcome_fine == "completed" and p.score <= cap
-          and p.score_fine <= cap for p in points]
+          and p.score_fine <= cap and p.orbit_saturated_after_failure_s == 0.0
+          for p in points]
     if not any(ok):
         return Bandwidth(points, None, None, best)
     runs: list[list[int]] = []
