@@ -721,7 +721,8 @@ NAMED = [
     (["simulate", "lunar", "--dt", "1e-300"], "--dt", "at most"),
     (["optimal", "mars", "--thrust-min", "86000"], "--thrust-min", "must be <"),
     (["optimal", "mars", "--thrust-min", "90000"], "--thrust-min", "must be in [0,"),
-    (["optimal", "mars", "--isp", "1e300"], "--isp", "(0, 100000]"),
+    (["optimal", "mars", "--isp", "1e300"], "--isp", "[1, 100000]"),
+    (["optimal", "mars", "--tf", "1.0", "--isp", "5e-324"], "--isp", "[1, 100000]"),
     (["optimal", "mars", "--drag", "physical", "--no-replay"], "--drag", "--replay"),
 ]
 

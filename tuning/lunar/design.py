@@ -412,7 +412,7 @@ def tune(req: Request, progress: Any = None) -> TuneResult:
         if req.pointing == "coupled" and not meets:
             entry["rejected"] = ("no bandwidth of the sweep meets the target on the nominal "
                                  "case" if bw.wn is not None else
-                                 "no completed point in the sweep")
+                                 "no robust point in the sweep")
             tried.append(entry)
             continue
         wn = bw.wn if bw.wn is not None else SP.CMD_WN
@@ -507,9 +507,12 @@ def certificate(res: TuneResult, req: Request, command: str = "") -> dict[str, A
         "offset_evidence": "design estimate, not a bound: the quasi-steady filter (11) under "
                            "the persistent failure",
         # step 3
-        "cmd_wn_rad_s": bw.wn, "cmd_band_rad_s": list(bw.band or ()),
+        "cmd_wn_rad_s": float(g.extra["command_filter"]["wn"]),
+        "cmd_band_rad_s": list(bw.band or ()),
         "cmd_wn_evidence": f"sampled: {len(bw.points)} bandwidths x 2 steps on the nominal "
-                           "case; the widest robust band's centre",
+                           + ("case; the widest robust band's centre" if bw.wn is not None else
+                              "case, none robust: the default wn of the paper's gains (ideal "
+                              "pointing promised; the coupled run reported, not promised)"),
         # step 4 (the promises, for the flights of ``pointing``)
         "pointing": req.pointing,
         "tracking_evidence": f"sampled: {acc['cases']} cases (seed {acc['seed']}, "
@@ -531,7 +534,7 @@ def certificate(res: TuneResult, req: Request, command: str = "") -> dict[str, A
         "coupled_eh_final_max_m": res.coupled.get("eh_final_max_m"),
         "coupled_ev_final_max_m_s": res.coupled.get("ev_final_max_m_s"),
         "coupled_evidence": (f"sampled: the same {res.coupled.get('cases', 0)} cases under "
-                             f"coupled pointing at wn = {bw.wn}: "
+                             f"coupled pointing at wn = {g.extra['command_filter']['wn']}: "
                              f"{res.coupled.get('completed', 0)} completed; "
                              + ("promised" if req.pointing == "coupled" else
                                 "reported, not promised")),
