@@ -173,6 +173,16 @@ def test_gains_that_is_not_a_regular_file_is_refused_without_hanging(kind, tmp_p
     print(f"\n--gains {kind}: refused in {time.monotonic() - t0:.1f} s: {p.stderr.strip()}")
 
 
+def _sigint_ignored() -> str:
+    """Whether this (test) process ignores SIGINT at the OS level (its children inherit it)."""
+    try:
+        line = next(x for x in Path("/proc/self/status").read_text().splitlines()
+                    if x.startswith("SigIgn:"))
+    except (OSError, StopIteration):
+        return "SigIgn unknown"
+    return f"test process SIGINT ignored: {bool(int(line.split()[1], 16) & (1 << 1))}"
+
+
 @pytest.mark.parametrize("args", [
     ["report", "eros", "--no-sim"],  # pure Python (SymPy)
     pytest.param(["simulate", "mars", "--dispersion", "table2", "--cases", "200000"],
@@ -184,9 +194,13 @@ def test_ctrl_c_exits_130_and_writes_nothing(args, tmp_path):
     left beside it."""
     out = tmp_path / "out"
     env = {**os.environ, "LGW_PROGRESS": "always"}
+    # as from a terminal: SIGINT at its default in the child (an ignored SIGINT is inherited
+    # across exec, and a test worker's may have been left ignored by a library run earlier
+    # in the same process; Python then never installs its Ctrl-C handler)
     proc = subprocess.Popen([*_lgw_cmd(), *args, "--out", str(out)], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, env=env,
-                            stdin=subprocess.DEVNULL)
+                            stdin=subprocess.DEVNULL,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         line = ""
         deadline = time.monotonic() + 300
@@ -203,7 +217,7 @@ def test_ctrl_c_exits_130_and_writes_nothing(args, tmp_path):
     finally:
         if proc.poll() is None:
             proc.kill()
-    assert proc.returncode == 130, (proc.returncode, err[-1000:])
+    assert proc.returncode == 130, (proc.returncode, err[-1000:], _sigint_ignored())
     assert "interrupted" in err and "Traceback" not in err, err[-1000:]
     assert not out.exists()
     assert [p.name for p in tmp_path.iterdir()] == []

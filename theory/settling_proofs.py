@@ -11,7 +11,6 @@ e2 > 0) so that SymPy's integrals converge without side conditions.
 from __future__ import annotations
 
 import math
-from functools import cache
 
 import sympy as sp
 from lgw.theory.evidence import Cited, Claim, Step
@@ -22,7 +21,7 @@ from lgw.theory.provers import (
     prove_z3,
     witness_step,
 )
-from lgw.theory.symbolic import sig
+from lgw.theory.symbolic import memo, sig
 
 V, V0, t, u = sp.symbols("V V_0 t u", positive=True)
 a, b, k, eta = sp.symbols("a b k eta", positive=True)
@@ -86,7 +85,7 @@ def _increasing_power(kk: sp.Expr, statement: str) -> Step:
     return prove_nonneg(sp.diff(x**kk, x), statement, strict=True)
 
 
-@cache
+@memo
 def lemma1() -> Claim:
     p1 = 1 - e1  # 0 < p < 1
     h_pos = prove_nonneg(a * V**p1, "h(V) = a V^p > 0 on V > 0 (hypothesis of the comparison "
@@ -133,7 +132,7 @@ def _split_integral_step(statement: str) -> Step:
                                  pw + _lemma2_integrals()))
 
 
-@cache
+@memo
 def lemma2() -> Claim:
     pw = _lemma2_pointwise()
     h_pos = prove_nonneg((a * V**p_sym + b * V**g_sym) ** k, "(a V^p + b V^g)^k > 0 on V > 0 "
@@ -174,7 +173,7 @@ def _substitution_steps() -> tuple[Step, ...]:
     )
 
 
-@cache
+@memo
 def exact_bound_claim() -> Claim:
     p_, g_ = p_sym, g_sym
     d = g_ - p_
@@ -206,7 +205,7 @@ def exact_bound_claim() -> Claim:
                                        "through the integral instead)"),))
 
 
-@cache
+@memo
 def exact_time_claim() -> Claim:
     p_, g_ = p_sym, g_sym
     d = g_ - p_
@@ -274,7 +273,7 @@ def _condition4_steps(f: sp.Expr = CE_SYSTEM) -> list[Step]:
     return out
 
 
-@cache
+@memo
 def theorem1_corrected() -> Claim:
     """What the workbench proves of Theorem 1: V reaches the set (5) within (6) and stays."""
     p_, g_ = p_sym, g_sym
@@ -310,7 +309,7 @@ def theorem1_corrected() -> Claim:
                  steps, statement="workbench", corrects="theorem1")
 
 
-@cache
+@memo
 def theorem1() -> Claim:
     """Theorem 1 as printed: 'the origin of (1) is fixed-time stable, and V reaches (5) within
     (6)'.  The first part fails for x' = f(x) of ``CE_SYSTEM``, which satisfies (4)."""

@@ -8,7 +8,10 @@ simplify; x = 0 is handled by the claims that need it.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import contextlib
+import functools
+from collections.abc import Callable, Iterator, Mapping
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -61,6 +64,47 @@ def on_branch(expr: sp.Expr, signs: Mapping[sp.Symbol, int]) -> tuple[sp.Expr, d
         xp = sp.Symbol(f"{s.name}_abs", positive=True)
         subs[s] = sgn * xp
     return sp.powsimp(sp.expand(expr.subs(subs)), force=False), subs
+
+
+def memo(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """``functools.cache`` whose store can be kept: ``cache_clear()`` as functools', and
+    ``cache_store``, the dict of results, which ``kept_module_caches`` saves and puts back
+    (a mutation check derives afresh without throwing away the unmutated derivation)."""
+    store: dict[Any, Any] = {}
+    kw_mark = object()
+
+    @functools.wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        key = args if not kwargs else (*args, kw_mark, *kwargs.items())
+        try:
+            return store[key]
+        except KeyError:
+            pass
+        value = fn(*args, **kwargs)
+        store[key] = value
+        return value
+
+    wrapper.cache_clear = store.clear  # type: ignore[attr-defined]
+    wrapper.cache_store = store  # type: ignore[attr-defined]
+    return wrapper
+
+
+@contextlib.contextmanager
+def kept_module_caches(modules: tuple[str, ...]) -> Iterator[None]:
+    """Within: the named modules' memoised results may be cleared and re-derived at will
+    (under a mutated law, say); after: every ``memo`` store holds exactly what it held before,
+    and every other cache of those modules is cleared (nothing derived within survives)."""
+    import sys
+
+    saved = [(obj, dict(obj.cache_store)) for name in modules
+             for obj in (vars(sys.modules[name]).values() if name in sys.modules else ())
+             if isinstance(getattr(obj, "cache_store", None), dict)]
+    try:
+        yield
+    finally:
+        clear_module_caches(modules)
+        for obj, store in saved:
+            obj.cache_store.update(store)
 
 
 def clear_module_caches(modules: tuple[str, ...]) -> None:

@@ -24,13 +24,25 @@ from tests.mutation import Mutation, check_mutation, verdicts
 GAINS = [default_gains()]  # the gain set the claims are judged for (a mutation may swap it)
 
 
+MODULES = ("lgw.theory.mars.claims", "lgw.theory.mars.bounded_claims", "lgw.theory.mars.mss",
+           "lgw.theory.mars.searches", "lgw.theory.settling_proofs")
+
+
 def clear_caches() -> None:
     """Forget every memoised claim, law, closed loop and search of seed 000."""
     from lgw.theory.symbolic import clear_module_caches
 
-    clear_module_caches(("lgw.theory.mars.claims", "lgw.theory.mars.bounded_claims",
-                         "lgw.theory.mars.mss", "lgw.theory.mars.searches",
-                         "lgw.theory.settling_proofs"))
+    clear_module_caches(MODULES)
+
+
+@pytest.fixture(autouse=True)
+def _unmutated_derivation_kept():
+    """Each mutation derives afresh; afterwards the unmutated derivation that was memoised
+    before it is back (a worker's other claim tests do not pay seed 000's derivation again)."""
+    from lgw.theory.symbolic import kept_module_caches
+
+    with kept_module_caches(MODULES):
+        yield
 
 
 def compute():

@@ -8,15 +8,13 @@ expression, not the simulator's compiled code.  ``all_claims()`` lists them in r
 
 from __future__ import annotations
 
-from functools import cache
-
 import numpy as np
 import sympy as sp
 from lgw.theory.evidence import Cited, Claim, FromClaim, Search, Step
 from lgw.theory.mars import bounded as B
 from lgw.theory.mars.mss import am, ap, grav, r, v
 from lgw.theory.provers import prove_arb, prove_identity, prove_nonneg, prove_z3
-from lgw.theory.symbolic import LAMBDIFY_MODULES, on_branch, sig
+from lgw.theory.symbolic import LAMBDIFY_MODULES, memo, on_branch, sig
 
 X = sp.Symbol("x", positive=True)  # |r| on a branch
 LAW = B.NAME
@@ -35,7 +33,7 @@ def _branches(expr: sp.Expr, sym: sp.Symbol, statement: str) -> list[Step]:
             for sg in (1, -1)]
 
 
-@cache
+@memo
 def claim_derivative() -> Claim:
     """s' = -k1 sig(s,e1) - k2 sig(s,e2) + a_p identically; V = s^2/2 gives the fixed-time
     inequality of seed 000 Lemma 2 on s."""
@@ -55,7 +53,7 @@ def claim_derivative() -> Claim:
                  derived_expr=sp.Eq(sp.Symbol("Vdot"), want), statement="workbench")
 
 
-@cache
+@memo
 def claim_finite() -> Claim:
     """The command is finite and continuous on R^2: every power in it has a nonnegative
     exponent or a base bounded away from 0, and sig(s, e) is continuous for e > 0."""
@@ -82,7 +80,7 @@ def claim_finite() -> Claim:
                  "c2 p2 |r|^(p2-1) is finite at r = 0", steps, law=LAW, statement="workbench")
 
 
-@cache
+@memo
 def claim_psi_monotone() -> Claim:
     """psi' > 0; c1 phi' decreases in |r|; psi >= c1 |r|/sqrt(delta + |r|) (used by the cell
     bound of the command and by the inverse bound of ``psi_inv_upper``)."""
@@ -102,7 +100,7 @@ def claim_psi_monotone() -> Claim:
                  steps, law=LAW, statement="workbench")
 
 
-@cache
+@memo
 def claim_slide_time() -> Claim:
     """On s = 0 (r' = -psi(r)) the time from |r| = x0 to x1 is at most (F(x0) - F(x1))/c1."""
     d = B.delta
@@ -201,7 +199,7 @@ def claim_invariants(g=None) -> Claim:
                  statement="workbench")
 
 
-@cache
+@memo
 def _u_numeric(sat: bool = False):
     """The commanded v' without disturbance (a + g + a_m), lambdified from the SymPy law."""
     if sat:
@@ -344,7 +342,7 @@ def _sat_of(g) -> tuple:
                                       else "DEFAULT_SAT (no [bounded-sat] table)")
 
 
-@cache
+@memo
 def claim_fixed_time() -> Claim:
     """Fixed time from every state: s reaches 0 by T_s* (exact), then the sliding phase by
     ``slide_time_global``; with |a_p,i| <= a_max the practical version with s_nb, theta, by a
@@ -377,7 +375,7 @@ def claim_fixed_time() -> Claim:
                  statement="workbench")
 
 
-@cache
+@memo
 def all_claims() -> tuple[Claim, ...]:
     """The bounded laws' claims that hold or fail whatever the valid gains."""
     return (claim_derivative(), claim_finite(), claim_psi_monotone(), claim_slide_time(),
@@ -390,7 +388,7 @@ def gain_set_claims(g=None) -> list[Claim]:
     return [claim_invariants(g), claim_sat_bounds(g)]
 
 
-@cache
+@memo
 def claim_sat_invariance() -> Claim:
     """For ``law_bounded_sat``: on the boundary |v| = W(r) of Omega_in = {|v| <= W(r)},
     d/dt (|v| - W(r)) < 0 (no disturbance), so Omega_in is forward invariant; inside it the law
@@ -431,7 +429,7 @@ def _sat_outside_law() -> sp.Expr:
     return law.xreplace({sat[0]: W}) + grav + am + ap
 
 
-@cache
+@memo
 def claim_sat_outside() -> Claim:
     """Outside Omega (v > W(r), the case v < -W(r) is the mirror image: the law is odd in
     (r, v)): s > w0 and v' = -psi'(r) W(r) - k(s) + a_p <= -D, D = inf psi'W + k(w0) - a_max,
@@ -463,7 +461,7 @@ def claim_sat_outside() -> Claim:
                  statement="workbench")
 
 
-@cache
+@memo
 def claim_sat_growth() -> Claim:
     """In Omega |r| grows only while |s| > psi(|r|); with y = min |r| so far, |r| - y <=
     G(psi(y), min(S, 2 psi(y) + w0)), G(p, S) = int_p^S (sigma - p)/(k1 sigma^e1) d sigma in

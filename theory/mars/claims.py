@@ -28,7 +28,6 @@ import dataclasses
 import itertools
 import math
 import random
-from functools import cache
 
 import numpy as np
 import sympy as sp
@@ -51,7 +50,7 @@ from lgw.theory.provers import (
     witness_step,
 )
 from lgw.theory.settling import polyakov_bound
-from lgw.theory.symbolic import sig
+from lgw.theory.symbolic import memo, sig
 
 # Budget of the full-domain searches run by the report (``lgw.theory.mars.searches``): small
 # enough for a report (~20 s for landing-time), large enough to re-find the paper's
@@ -159,7 +158,7 @@ def _dbeta() -> sp.Expr:
 
 # --- (15), (16), (19)-(20), (18) ---------------------------------------------------------
 
-@cache
+@memo
 def surface_claim() -> Claim:
     steps = [_identity(M.surface2().subs(v, M.reaching_law_rhs(r)),
                             "s2 of (21) vanishes exactly when s1' = v obeys the reaching law (16)")]
@@ -175,7 +174,7 @@ def surface_claim() -> Claim:
                  paper_expr=paper, derived_expr=derived)
 
 
-@cache
+@memo
 def v1dot_axis_claim() -> Claim:
     V1 = r**2 / 2
     V1dot = sp.diff(V1, r) * M.reaching_law_rhs(r)
@@ -232,7 +231,7 @@ def _power_mean_search(q_lo: float, q_hi: float, factor, statement: str, seed: i
                        recheck_method="SymPy at 30 digits from the rationalised point")
 
 
-@cache
+@memo
 def v1dot_vector_claim() -> Claim:
     """The paper writes (19)-(20) with the vector s1 and diagonal matrices; with V1 = |s1|^2/2
     the inequality needs sum_i |s_i|^(q+1) >= (sum s_i^2)^((q+1)/2), false for q > 1."""
@@ -250,7 +249,7 @@ def v1dot_vector_claim() -> Claim:
                  "q2 = 2); the corrected form is claim V1dot-vector-corrected.", steps)
 
 
-@cache
+@memo
 def v1dot_vector_corrected_claim() -> Claim:
     steps = [
         _power_mean_search(0.01, 0.99, lambda q: 1.0,
@@ -317,7 +316,7 @@ def _decoupled_step(rhs_of, statement: str) -> Step:
     return _identity(off, statement)
 
 
-@cache
+@memo
 def t1_claim() -> Claim:
     i1, _ = _route_identity(b1, b2, q1, q2)
     gb = [sp.symbols(f"beta1_{a} beta2_{a}", positive=True) for a in "xyz"]
@@ -340,7 +339,7 @@ def t1_claim() -> Claim:
 
 # --- (22)-(29): the second surface and the guidance ---------------------------------------
 
-@cache
+@memo
 def s2dot_claim() -> Claim:
     acc = sp.Symbol("a", real=True)
     s2dot = M.time_derivative(M.surface2(), acc)
@@ -353,7 +352,7 @@ def s2dot_claim() -> Claim:
                  "Holds (s1 != 0).", steps)
 
 
-@cache
+@memo
 def s2dot24_claim() -> Claim:
     acc = sp.Symbol("a", real=True)
     true = M.time_derivative(M.surface2(), acc)
@@ -375,7 +374,7 @@ def _printed24(acc: sp.Expr) -> sp.Expr:
             - b2**2 * q2 * sig(r, 2 * q2 - 1) - b1 * b2 * (q1 + q2) * sig(r, q1 + q2 - 1))
 
 
-@cache
+@memo
 def s2dot24_corrected_claim() -> Claim:
     acc = sp.Symbol("a", real=True)
     resid = M.time_derivative(M.surface2(), acc) - _printed24(acc)
@@ -418,7 +417,7 @@ def _v2dot_residual(law: str, with_ap: bool = False) -> sp.Expr:
     return _surface_coords(V2dot - target)
 
 
-@cache
+@memo
 def v2dot_claim(law: str) -> Claim:
     """(29) judged on the law: V2' - (29) is computed from the law's closed loop; it must
     vanish on every sign branch (a witness, drawn inside the gain hypotheses, refutes)."""
@@ -455,7 +454,7 @@ def v2dot_claim(law: str) -> Claim:
                  paper_expr=paper_e, derived_expr=derived_e, remarks=remarks)
 
 
-@cache
+@memo
 def laws_agree_claim() -> Claim:
     diff = M.law_corrected() - M.law_printed()
     steps = [prove_branches(_surface_coords(diff + _dbeta() * M.surface2()), (r,),
@@ -498,7 +497,7 @@ def _t2_printed_witness() -> Step:
                         domain={"case": "Fig. 6, s1x(0) = -8000 m"})
 
 
-@cache
+@memo
 def t2_claim(law: str) -> Claim:
     """Theorem 3 judged on the law: the proof route of (26) rests on (29) for that law (claim
     V2dot-<law>) and Lemma 2; a falsification search of the statement itself runs beside it
@@ -539,7 +538,7 @@ def _composition_step() -> Step:
                     "from then s1 needs t_s1 <= T1 (uniform in s1(t_s2))")
 
 
-@cache
+@memo
 def landing_claim() -> Claim:
     """The paper's rule for the whole mission, landing <= max{T1, T2}, judged for the law
     under which (18) and (26) both hold (the corrected law; under the printed law (26) fails
@@ -560,7 +559,7 @@ def landing_claim() -> Claim:
                  paper_expr=(sp.Le(T_LAND, sp.Max(T1S, T2S), evaluate=False),))
 
 
-@cache
+@memo
 def landing_corrected_claim() -> Claim:
     # The sound bound: s2 reaches 0 by T2 and stays (V2' <= 0), then s1 follows (16).
     s_res = _identity(
@@ -582,7 +581,7 @@ def landing_corrected_claim() -> Claim:
 
 # --- Remark 1: minimum tf -------------------------------------------------------------------
 
-@cache
+@memo
 def remark1_claim() -> Claim:
     a_max = THRUST_MAX_AXIS / M0
     printed = tf_min_printed(R0, V0, a_max, G_MARS)
@@ -606,7 +605,7 @@ def remark1_claim() -> Claim:
                  numbers={"printed_per_axis": printed.tolist(), "a_max": a_max})
 
 
-@cache
+@memo
 def remark1_corrected_claim() -> Claim:
     a_max = THRUST_MAX_AXIS / M0
     derived = tf_min(R0, V0, a_max, G_MARS)
@@ -698,7 +697,7 @@ def _bounded_step(law: str, exps: list[sp.Expr], point: dict, statement: str) ->
 
 # --- Bounded command ---------------------------------------------------------------------
 
-@cache
+@memo
 def bounded_command_claim(law: str) -> Claim:
     if law == "corrected":
         acc = M.law(law).subs({M.grav: 0, M.am: 0})
@@ -769,7 +768,7 @@ def _disturbance_product_step() -> Step:
                     "s2 a_p <= a_max |s2| whenever |a_p,i| <= a_max")
 
 
-@cache
+@memo
 def v2dot_disturbed_claim(law: str) -> Claim:
     """(36) judged on the law: V2' - (29) - s2 a_p is computed from the law's closed loop
     under (30) and must vanish on every sign branch; then s2 a_p <= a_max |s2|."""
@@ -840,7 +839,7 @@ def _t4(law: str, base: str) -> tuple[str, dict]:
     return f"{base}-corrected", {"law": "corrected", "statement": "workbench", "corrects": base}
 
 
-@cache
+@memo
 def s2_neighborhood_claim(law: str = "corrected") -> Claim:
     cid, kw = _t4(law, "s2-neighborhood")
     steps = [_lemma(v2dot_disturbed_claim(law), f"(36) under the {law} law"),
@@ -868,7 +867,7 @@ def _practical_time_identity(gain1, gain2, e1_, e2_, theta, eq: str) -> Step:
         f"{eq} = Lemma 2 (3) with the gains -> theta x gains (V = s^2/2 route)")
 
 
-@cache
+@memo
 def t2_practical_claim(law: str = "corrected") -> Claim:
     cid, kw = _t4(law, "T2-practical")
     steps = [_lemma(s2_neighborhood_claim(law), "s2 enters (39) and stays"),
@@ -889,7 +888,7 @@ def _nbhd31() -> sp.Expr:
     return sp.Min((MI / ((1 - th2) * b1)) ** (1 / q1), (MI / ((1 - th2) * b2)) ** (1 / q2))
 
 
-@cache
+@memo
 def s1_neighborhood_claim(law: str = "corrected") -> Claim:
     cid, kw = _t4(law, "s1-neighborhood")
     resid = sp.diff(M.surface1(), r) * v - (M.reaching_law_rhs(r) + S2)
@@ -911,7 +910,7 @@ def s1_neighborhood_claim(law: str = "corrected") -> Claim:
                                sp.Eq(MI, _bound_exprs()["s2 nbhd (39)"], evaluate=False)), **kw)
 
 
-@cache
+@memo
 def t1_practical_claim(law: str = "corrected") -> Claim:
     cid, kw = _t4(law, "T1-practical")
     steps = [_lemma(s1_neighborhood_claim(law), "s1 enters (31) and stays"),
@@ -932,7 +931,7 @@ def _t3_paper_argument() -> Step:
                        "i.e. s1' - (16) = 0 for every state (it is s2)")
 
 
-@cache
+@memo
 def t3_claim() -> Claim:
     """(32) as printed: no proof (the paper's argument is invalid, remark); the full-domain
     search of the disturbed closed loop decides (judged for the corrected law, under which
@@ -948,7 +947,7 @@ def t3_claim() -> Claim:
                                    evaluate=False),))
 
 
-@cache
+@memo
 def t3_corrected_claim() -> Claim:
     t_s2, t_s1, T1_, T2_, t_land = sp.symbols("t_s2 t_s1 T45 T40 t_land", real=True)
     comp = prove_z3(sp.Le(t_land, T1_ + T2_),
@@ -974,7 +973,7 @@ PRINTED = {"T1 (18)": 74.5780, "T2 (26)": 30.8217, "s2 nbhd (39)": 26.5257,
 ROUND = 5e-5
 
 
-@cache
+@memo
 def paper_numbers_claim() -> Claim:
     th1_, th2_ = sp.Rational(1, 5), sp.Rational(1, 10)
     P = {k: sp.nsimplify(v) for k, v in PRINTED.items()}
@@ -998,7 +997,7 @@ def paper_numbers_claim() -> Claim:
 
 # --- The model: plant (10)-(11), drag (12), mass (13)-(14), Hypothesis 1 and (47) -----------
 
-@cache
+@memo
 def plant_claim() -> Claim:
     acc = sp.Symbol("a", real=True)
     steps = [_identity(M.time_derivative(v, acc, ap) - (acc + M.grav + M.am + ap),
@@ -1011,7 +1010,7 @@ def plant_claim() -> Claim:
                  "with (30).", steps)
 
 
-@cache
+@memo
 def drag_claim() -> Claim:
     vi, rz, Ai, m = sp.symbols("v_i r_z A_i m", real=True)
     a_m = -sp.Rational(699, 1000) * vi**2 * sp.exp(-sp.Rational(9, 10000) * rz) / (Ai * m)
@@ -1032,7 +1031,7 @@ def drag_claim() -> Claim:
                                      * Ai * sp.Abs(vi) * vi / (2 * m), evaluate=False),))
 
 
-@cache
+@memo
 def mass_claim() -> Claim:
     Fx, Fy, Fz = sp.symbols("F_x F_y F_z", real=True)
     c, m = sp.symbols("c m", positive=True)
@@ -1049,7 +1048,7 @@ def mass_claim() -> Claim:
                  "command within F_max/m0 is within the limit at every mass.", steps)
 
 
-@cache
+@memo
 def hypothesis1_claim() -> Claim:
     t_ = sp.Symbol("t", real=True)
     amp = sp.Integer(20)
@@ -1065,7 +1064,7 @@ def hypothesis1_claim() -> Claim:
                  steps, scope="scenario")
 
 
-@cache
+@memo
 def hypothesis1_per_axis_claim() -> Claim:
     t_ = sp.Symbol("t", real=True)
     amp = sp.Integer(20)
@@ -1081,7 +1080,7 @@ def hypothesis1_per_axis_claim() -> Claim:
                  scope="scenario", statement="workbench", corrects="hypothesis1-47")
 
 
-@cache
+@memo
 def remark2_claim() -> Claim:
     uu = sp.Symbol("u", positive=True)  # 1 - q1 (or 1 - g1), in (0, 1)
     ww = sp.Symbol("w", positive=True)  # q2 - 1 (or g2 - 1)
@@ -1102,7 +1101,7 @@ def remark2_claim() -> Claim:
                  "here; see thrust-table1@gains).", steps)
 
 
-@cache
+@memo
 def theta_effect_claim() -> Claim:
     """After (45): 'a large value of the disturbance upper bound a_pMAX leads to a wide
     neighborhood; large values of theta1 and theta2 shrink the neighborhood size, but increase
@@ -1414,7 +1413,7 @@ class _GainsKey:
         return isinstance(other, _GainsKey) and other.text == self.text
 
 
-@cache
+@memo
 def _gain_set_claims(key: _GainsKey) -> tuple[Claim, ...]:
     # memoised per gain set (a report, its JSON and the checks judge the same set more than
     # once; each judgement flies the thrust scenarios): cleared with the module's caches

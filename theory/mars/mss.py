@@ -24,11 +24,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cache
 
 import numpy as np
 import sympy as sp
-from lgw.theory.symbolic import LAMBDIFY_MODULES, sig
+from lgw.theory.symbolic import LAMBDIFY_MODULES, memo, sig
 
 LAWS = ("corrected", "printed")
 
@@ -137,7 +136,7 @@ class ClosedLoop:
     V2dot: sp.Expr  # along (30) with a_p
 
 
-@cache
+@memo
 def closed_loop(name: str) -> ClosedLoop:
     a = law(name)
     s1, s2 = surface1(), surface2()
@@ -151,7 +150,7 @@ def in_surface_coords(expr: sp.Expr) -> sp.Expr:
     return expr.subs(v, S2 + reaching_law_rhs(r))
 
 
-@cache
+@memo
 def s2_drift_branches(name: str) -> tuple[sp.Expr, sp.Expr]:
     """What the law leaves in s2' beyond the s2 reaching term, without disturbance:
     e(s1, s2) = s2' + alpha1 sig(s2,g1) + alpha2 sig(s2,g2) in surface coordinates, computed
@@ -174,7 +173,7 @@ def s2_drift_vanishes(name: str) -> bool:
     return all(b == 0 for b in s2_drift_branches(name))
 
 
-@cache
+@memo
 def s2_drift_numeric(name: str) -> Callable[..., float] | None:
     """The drift e(s1, s2) of ``s2_drift_branches`` as a scalar function
     f(s1, s2, beta1, beta2, alpha1, alpha2, q1, q2, g1, g2) (plain floats), or None when it
@@ -200,7 +199,7 @@ LawFn = Callable[..., np.ndarray]
 LAW_ARGS = (r, v, grav, am, *GAIN_SYMBOLS)
 
 
-@cache
+@memo
 def law_numeric(name: str) -> LawFn:
     """The law ``name`` lambdified: f(r, v, grav, a_m, beta1, beta2, alpha1, alpha2, q1, q2,
     g1, g2) -> commanded acceleration, broadcasting over numpy arrays (e.g. (N, 3) states with
@@ -208,7 +207,7 @@ def law_numeric(name: str) -> LawFn:
     return sp.lambdify(LAW_ARGS, law(name), modules=LAMBDIFY_MODULES)
 
 
-@cache
+@memo
 def surfaces_numeric() -> tuple[LawFn, LawFn]:
     """(s1, s2) of (15), (21) lambdified as f(r, v, beta1, beta2, q1, q2)."""
     args = (r, v, beta1, beta2, q1, q2)

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from functools import cache
 
 import numpy as np
 import sympy as sp
@@ -44,7 +43,7 @@ from lgw.theory.mars import mss as M
 from lgw.theory.mars.gains import Gains, gains_from_dict
 from lgw.theory.mars.reduced import surface_trajectory, trajectory
 from lgw.theory.settling import exact_bound
-from lgw.theory.symbolic import LAMBDIFY_MODULES
+from lgw.theory.symbolic import LAMBDIFY_MODULES, memo
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
@@ -355,7 +354,7 @@ def resolvable(p: Mapping[str, float]) -> bool:
     return all(RESOLVABLE <= b[k] < REPRESENTABLE[1] for k in ("s2_bound", "s1_bound"))
 
 
-@cache
+@memo
 def _s2dot_numeric():
     """s2' of the SymPy closed loop (corrected law, disturbance a_p) as a function of
     (s1, s2, a_p, gains): an independent route to the band's invariance."""
@@ -590,7 +589,7 @@ STATEMENTS = {
 }
 
 
-@cache
+@memo
 def run(search_id: str, budget: Budget = FULL) -> Search:
     """The falsification run of one search (cached per budget)."""
     return falsify(problems()[search_id][1], budget)
@@ -608,7 +607,7 @@ KNOWN_STARTS: dict[str, tuple[dict[str, float], ...]] = {
 }
 
 
-@cache
+@memo
 def run_from_known(search_id: str, budget: Budget = FULL) -> Search:
     """``run`` started from the worst points of the FULL-budget run (``KNOWN_STARTS``)."""
     return falsify(problems()[search_id][1], budget, starts=KNOWN_STARTS.get(search_id, ()))
