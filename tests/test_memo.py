@@ -51,3 +51,15 @@ def test_kept_caches_come_back_and_what_was_derived_within_goes():
         assert len(m.calls) == n + 1
     finally:
         del sys.modules[m.__name__]
+
+
+def test_memo_by_key_serves_equal_values_of_unhashable_arguments():
+    calls = []
+
+    @memo(key=lambda xs: tuple(xs))
+    def total(xs):
+        calls.append(list(xs))
+        return sum(xs)
+
+    assert total([1, 2]) == 3 and total([1, 2]) == 3 and total([2, 2]) == 4
+    assert calls == [[1, 2], [2, 2]]

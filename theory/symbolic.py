@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import functools
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Hashable, Iterator, Mapping
 from typing import Any
 
 import numpy as np
@@ -66,22 +66,28 @@ def on_branch(expr: sp.Expr, signs: Mapping[sp.Symbol, int]) -> tuple[sp.Expr, d
     return sp.powsimp(sp.expand(expr.subs(subs)), force=False), subs
 
 
-def memo(fn: Callable[..., Any]) -> Callable[..., Any]:
+def memo(fn: Callable[..., Any] | None = None, *,
+         key: Callable[..., Hashable] | None = None) -> Any:
     """``functools.cache`` whose store can be kept: ``cache_clear()`` as functools', and
     ``cache_store``, the dict of results, which ``kept_module_caches`` saves and puts back
-    (a mutation check derives afresh without throwing away the unmutated derivation)."""
+    (a mutation check derives afresh without throwing away the unmutated derivation).
+    ``@memo(key=f)`` stores under ``f(*args, **kwargs)`` instead of the arguments: for
+    arguments that are not hashable but have a canonical form (a gain set's exact values)."""
+    if fn is None:
+        return lambda f: memo(f, key=key)
     store: dict[Any, Any] = {}
     kw_mark = object()
 
     @functools.wraps(fn)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
-        key = args if not kwargs else (*args, kw_mark, *kwargs.items())
+        k = (key(*args, **kwargs) if key is not None else
+             args if not kwargs else (*args, kw_mark, *kwargs.items()))
         try:
-            return store[key]
+            return store[k]
         except KeyError:
             pass
         value = fn(*args, **kwargs)
-        store[key] = value
+        store[k] = value
         return value
 
     wrapper.cache_clear = store.clear  # type: ignore[attr-defined]

@@ -23,6 +23,7 @@ from lgw.theory.lunar.gains import Gains, paper_gains
 from lgw.theory.lunar.hypotheses import f2bar_minus_f3, quantities
 from lgw.theory.lunar.parameters import M0, ORBIT_GAINS
 from lgw.theory.provers import identity_evidence, prove_identity, prove_nonneg, refute_nonneg_at
+from lgw.theory.symbolic import memo
 
 CAUCHY = ("Cauchy-Schwarz inequality: z^T d <= ||z|| ||d||")
 RAYLEIGH = ("Rayleigh quotient: x^T F x >= lambda_min(F) ||x||^2 for symmetric F (Horn & "
@@ -330,14 +331,21 @@ def smooth_claim() -> Claim:
                  derived_expr=(sp.Eq(sp.Symbol("u_cz(0+) - u_cz(0-)"), jump, evaluate=False),))
 
 
+# --- gain sets as cache keys -----------------------------------------------------------------
+
+def gains_key(g: Gains) -> str:
+    """A gain set as a memo key (``lgw.theory.symbolic.memo``): its exact TOML values, as
+    canonical JSON."""
+    return json.dumps(g.to_dict(), sort_keys=True)
+
+
 def lasalle_claim(g: Gains | None = None) -> Claim:
     """(14) from LaSalle-Yoshizawa for the gains in use: hypotheses as steps."""
-    return _lasalle_claim(gains_key(g or paper_gains()))
+    return _lasalle_claim(g or paper_gains())
 
 
-@cache
-def _lasalle_claim(key: str) -> Claim:
-    g = gains_of(key)
+@memo(key=gains_key)
+def _lasalle_claim(g: Gains) -> Claim:
     S = systems()[0]
     V2 = S.in_z(S.V2)
     Qs = [quantities(loop, getattr(g, loop)) for loop in ("orbit", "attitude")]
@@ -431,22 +439,3 @@ def _vlambda_scalar() -> sp.Expr:
     Vl = (S.lam1[0] ** 2 + S.lam2[0] ** 2) / 2
     return scalar_display(sp.expand(sum(sp.diff(Vl, x) * S.rates[x]
                                         for x in (S.lam1[0], S.lam2[0]))), z=False)
-
-
-
-
-# --- gain sets as cache keys -----------------------------------------------------------------
-
-_GAINS: dict[str, Gains] = {}
-
-
-def gains_key(g: Gains) -> str:
-    """A hashable key for a gain set (its exact TOML values), remembered with the gains so that
-    cached claim builders take the key and judge the gains it names."""
-    key = json.dumps(g.to_dict(), sort_keys=True)
-    _GAINS[key] = g
-    return key
-
-
-def gains_of(key: str) -> Gains:
-    return _GAINS[key]

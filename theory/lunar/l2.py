@@ -33,7 +33,6 @@ from lgw.theory.lunar.derivation import (
     Z2,
     at0,
     gains_key,
-    gains_of,
     lemma,
     systems,
     v2dot_bound_claim,
@@ -48,6 +47,7 @@ from lgw.theory.lunar.hypotheses import (
 )
 from lgw.theory.provers import identity_at, prove_identity
 from lgw.theory.report_math import Norm as norm
+from lgw.theory.symbolic import memo
 
 LOOPS = ("orbit", "attitude")
 V0 = sp.Symbol("V_20", real=True)  # V2(0)
@@ -85,12 +85,11 @@ def _integrated_13():
 
 def l2_claim(g: Gains | None = None) -> Claim:
     """(18) for the gains in use: derived from (17b), compared with the printed constants."""
-    return _l2_claim(gains_key(g or paper_gains()))
+    return _l2_claim(g or paper_gains())
 
 
-@cache
-def _l2_claim(key: str) -> Claim:
-    g = gains_of(key)
+@memo(key=gains_key)
+def _l2_claim(g: Gains) -> Claim:
     I = _integrated_17b()
     J = sp.Symbol("J_w", real=True)  # ||B0 du||^2
     c1, c2 = B.lambda_gain_bounds(F1B, F2B)  # the printed (18) constants, symbolically
@@ -138,12 +137,11 @@ def _hinf_search(name: str, gain: float, hinf: dict, key: str) -> Step:
 
 def l2_hinf_claim(g: Gains | None = None) -> Claim:
     """The (18) constants against the true L2 gains of the filter (11) for the gains in use."""
-    return _l2_hinf_claim(gains_key(g or paper_gains()))
+    return _l2_hinf_claim(g or paper_gains())
 
 
-@cache
-def _l2_hinf_claim(key: str) -> Claim:
-    g = gains_of(key)
+@memo(key=gains_key)
+def _l2_hinf_claim(g: Gains) -> Claim:
     ob, ab = B.orbit_bounds(g.orbit), B.attitude_bounds(g.attitude, 1.0)
     steps = [_hinf_search("orbit", ob.lambda1_gain, ob.hinf, "lambda1"),
              _hinf_search("orbit", ob.lambda2_gain, ob.hinf, "lambda2"),
@@ -174,16 +172,16 @@ def _witness_problem(g: Gains, name: str, margin, label: str) -> Problem:
                    "SciPy RK45 rtol 1e-8", "the same run by DOP853 rtol 1e-12 atol 1e-14")
 
 
-@cache
-def _witness_19(key: str) -> Search:
-    return falsify(_witness_problem(gains_of(key), "(19)-(20) as printed", SR.margin_19,
+@memo(key=gains_key)
+def _witness_19(g: Gains) -> Search:
+    return falsify(_witness_problem(g, "(19)-(20) as printed", SR.margin_19,
                                     "min over (19a), (19b) of (bound - observed)/bound"),
                    WITNESS_BUDGET)
 
 
-@cache
-def _witness_21a(key: str) -> Search:
-    return falsify(_witness_problem(gains_of(key), "(21a) as printed", SR.margin_21a,
+@memo(key=gains_key)
+def _witness_21a(g: Gains) -> Search:
+    return falsify(_witness_problem(g, "(21a) as printed", SR.margin_21a,
                                     "(21a) (bound - ||x1||)/bound, du = 0"), WITNESS_BUDGET)
 
 
@@ -194,15 +192,14 @@ def _search_step(statement: str, ev: Search) -> Step:
 
 def z_l2_claim(g: Gains | None = None) -> Claim:
     """(19)-(20) as printed, judged for the gains in use."""
-    return _z_l2_claim(gains_key(g or paper_gains()))
+    return _z_l2_claim(g or paper_gains())
 
 
-@cache
-def _z_l2_claim(key: str) -> Claim:
-    g = gains_of(key)
+@memo(key=gains_key)
+def _z_l2_claim(g: Gains) -> Claim:
     Qo = quantities("orbit", g.orbit)
     I = _integrated_13()
-    ev = _witness_19(key)
+    ev = _witness_19(g)
     steps = [_search_step("(19a), (19b) with V2(0) of (20), as printed, hold on a scalar "
                           "instance of the law", ev)]
     # the printed forms (bounds.z_l2_bounds / v2_initial on symbols) against the derived ones
@@ -249,12 +246,11 @@ def _z_l2_claim(key: str) -> Claim:
 
 def z_l2_derived_claim(g: Gains | None = None) -> Claim:
     """(19)-(20) as the workbench derives them, for the gains in use."""
-    return _z_l2_derived_claim(gains_key(g or paper_gains()))
+    return _z_l2_derived_claim(g or paper_gains())
 
 
-@cache
-def _z_l2_derived_claim(key: str) -> Claim:
-    g = gains_of(key)
+@memo(key=gains_key)
+def _z_l2_derived_claim(g: Gains) -> Claim:
     I = _integrated_13()
     d1, d2 = B.z_l2_bounds(V0, F1B, F2B, F3B)  # the bound functions the CLI uses
     S = systems()[0]
@@ -324,14 +320,13 @@ def _on_domain(expr: sp.Expr) -> sp.Expr:
 
 def transient_claim(g: Gains | None = None) -> Claim:
     """(21) as printed, judged for the gains in use."""
-    return _transient_claim(gains_key(g or paper_gains()))
+    return _transient_claim(g or paper_gains())
 
 
-@cache
-def _transient_claim(key: str) -> Claim:
-    g = gains_of(key)
+@memo(key=gains_key)
+def _transient_claim(g: Gains) -> Claim:
     composed, printed_a = _composition(True)
-    ev = _witness_21a(key)
+    ev = _witness_21a(g)
     steps = [_minkowski(),
              lemma("(18): the virtual-state bounds", l2_claim(g)),
              lemma("(19)-(20) as printed (the paper's premise of (21))", z_l2_claim(g)),
@@ -366,12 +361,11 @@ def _with(step: Step, expr: sp.Basic) -> Step:
 
 def transient_derived_claim(g: Gains | None = None) -> Claim:
     """(21) as the workbench derives it, for the gains in use."""
-    return _transient_derived_claim(gains_key(g or paper_gains()))
+    return _transient_derived_claim(g or paper_gains())
 
 
-@cache
-def _transient_derived_claim(key: str) -> Claim:
-    g = gains_of(key)
+@memo(key=gains_key)
+def _transient_derived_claim(g: Gains) -> Claim:
     composed, x1b = _composition(False)
     K = sp.Symbol("k_K1f1", nonnegative=True)  # sup ||K1 f1^T||
     _, d2 = B.z_l2_bounds(V0, F1B, F2B, F3B)

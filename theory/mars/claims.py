@@ -1396,30 +1396,20 @@ def tuning_rule_gain_claim(g, tf: float = 30.0) -> Claim:
                  scope="gain-set", numbers=_bound_numbers(g, ("T1_polyakov", "T2_polyakov")))
 
 
-class _GainsKey:
-    """A gain set as a memo key: equal when every value of the file is equal (the arrays,
-    the disturbance and the ``extra`` tables the bounded laws read), as its canonical JSON."""
+def _gains_text(g) -> str:
+    """A gain set as a memo key: every value of the file (the arrays, the disturbance and
+    the ``extra`` tables the bounded laws read), as canonical JSON."""
+    import json
 
-    def __init__(self, g) -> None:
-        import json
-
-        self.g = g
-        self.text = json.dumps({**g.to_dict(), "extra": g.extra}, sort_keys=True, default=repr)
-
-    def __hash__(self) -> int:
-        return hash(self.text)
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, _GainsKey) and other.text == self.text
+    return json.dumps({**g.to_dict(), "extra": g.extra}, sort_keys=True, default=repr)
 
 
-@memo
-def _gain_set_claims(key: _GainsKey) -> tuple[Claim, ...]:
+@memo(key=_gains_text)
+def _gain_set_claims(g) -> tuple[Claim, ...]:
     # memoised per gain set (a report, its JSON and the checks judge the same set more than
     # once; each judgement flies the thrust scenarios): cleared with the module's caches
     from lgw.theory.mars import bounded_claims
 
-    g = key.g
     return (*paper_numbers_gain_claims(g), tuning_rule_gain_claim(g),
             bounded_command_gain_claim(g), *thrust_gain_claims(g), hypotheses_gain_claim(g),
             *bounded_claims.gain_set_claims(g))
@@ -1429,7 +1419,7 @@ def gain_set_claims(g) -> list[Claim]:
     """Every gain-dependent statement of seed 000 judged for the gain set ``g`` (a
     ``lgw.theory.mars.gains.Gains``): scope "gain-set"; the bounded laws' box bounds are judged
     for the file's ``[bounded]`` and ``[bounded-sat]`` tables."""
-    return list(_gain_set_claims(_GainsKey(g)))
+    return list(_gain_set_claims(g))
 
 
 def general_claims() -> list[Claim]:

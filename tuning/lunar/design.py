@@ -484,6 +484,7 @@ def certificate(res: TuneResult, req: Request, command: str = "") -> dict[str, A
     g = res.gains
     assert g is not None and res.bandwidth is not None
     red, acc, bw = res.redundancy, res.acceptance, res.bandwidth
+    wn = float(g.extra["command_filter"]["wn"])  # flown: the band's choice, else the default
     hyp, l2 = hypotheses(g), l2_gains(g)
     env = req.envelope
     return {
@@ -507,7 +508,7 @@ def certificate(res: TuneResult, req: Request, command: str = "") -> dict[str, A
         "offset_evidence": "design estimate, not a bound: the quasi-steady filter (11) under "
                            "the persistent failure",
         # step 3
-        "cmd_wn_rad_s": float(g.extra["command_filter"]["wn"]),
+        "cmd_wn_rad_s": wn,
         "cmd_band_rad_s": list(bw.band or ()),
         "cmd_wn_evidence": f"sampled: {len(bw.points)} bandwidths x 2 steps on the nominal "
                            + ("case; the widest robust band's centre" if bw.wn is not None else
@@ -534,7 +535,7 @@ def certificate(res: TuneResult, req: Request, command: str = "") -> dict[str, A
         "coupled_eh_final_max_m": res.coupled.get("eh_final_max_m"),
         "coupled_ev_final_max_m_s": res.coupled.get("ev_final_max_m_s"),
         "coupled_evidence": (f"sampled: the same {res.coupled.get('cases', 0)} cases under "
-                             f"coupled pointing at wn = {g.extra['command_filter']['wn']}: "
+                             f"coupled pointing at wn = {wn}: "
                              f"{res.coupled.get('completed', 0)} completed; "
                              + ("promised" if req.pointing == "coupled" else
                                 "reported, not promised")),
