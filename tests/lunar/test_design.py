@@ -66,6 +66,11 @@ def test_bandwidth_rule_refuses_a_point_saturated_after_the_failure():
            _pt(25, 0.6, sat_after=56.0), _pt(30, 0.6), _pt(35, 0.6))
     bw = D.choose_bandwidth(pts)
     assert bw.band == (30, 35) and bw.wn == 30 and bw.robust == (30, 35)
+    # the table a reader sees says why: the saturation after the failure, and the verdict
+    rows = bw.rows(str)
+    assert [r[bw.COLUMNS.index("sat after failure s")] for r in rows] == \
+        ["84.0", "2.0", "0.5", "56.0", "0.0", "0.0"]
+    assert [r[bw.COLUMNS.index("robust")] for r in rows] == ["no"] * 4 + ["yes"] * 2
 
 
 @pytest.mark.slow

@@ -108,13 +108,10 @@ def _render(con: Any, rows: list[Any], bw: Any, notes: list[str]) -> None:
                  ("condition", "pointing", "e_h(t_f) m", "|e_v(t_f)| m/s", "max|e_h| m",
                   "sat after failure s", "torque sat s", "outcome", "dt/4 agrees"), table)
     if bw is not None:
-        pts = [(fmt(p.wn), fmt(p.eh), fmt(p.ev), p.outcome, fmt(p.torque_saturated_s),
-                "yes" if p.converged else "no") for p in bw.points]
         result_table(con, "command-filter bandwidth, Section 5, coupled"
                      + (f": robust band {fmt(bw.band[0])}-{fmt(bw.band[1])} rad/s, choice "
                         f"{fmt(bw.wn)}" if bw.band else ": no robust band"),
-                     ("wn rad/s", "e_h(t_f) m", "|e_v(t_f)| m/s", "outcome", "torque sat s",
-                      "dt/2 agrees"), pts)
+                     bw.COLUMNS, bw.rows(fmt))
     for n in notes:
         con.print(n, markup=False, highlight=False)
 

@@ -46,6 +46,7 @@ failure, the bandwidth's robustness).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from typing import Any
@@ -194,6 +195,16 @@ class Bandwidth:
     band: tuple[float, float] | None
     best_score: float | None
     robust: tuple[float, ...] = ()
+
+    COLUMNS = ("wn rad/s", "e_h(t_f) m", "|e_v(t_f)| m/s", "outcome", "torque sat s",
+               "sat after failure s", "dt/2 agrees", "robust")
+
+    def rows(self, fmt: Callable[[Any], str]) -> tuple[tuple[str, ...], ...]:
+        """The sweep as table rows (``COLUMNS``, numbers by ``fmt``: the report's or the
+        terminal's): what the rule judged at each point."""
+        return tuple((fmt(p.wn), fmt(p.eh), fmt(p.ev), p.outcome, fmt(p.torque_saturated_s),
+                      fmt(p.orbit_saturated_after_failure_s), "yes" if p.converged else "no",
+                      "yes" if p.wn in self.robust else "no") for p in self.points)
 
     def to_dict(self) -> dict[str, Any]:
         return {"wn_rad_s": self.wn, "band_rad_s": list(self.band) if self.band else None,

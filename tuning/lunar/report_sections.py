@@ -153,11 +153,9 @@ def bandwidth_section(gains: Gains | None, opts: RunOptions, ideal: dict) -> Sec
 
     g = gains or paper_gains()
     bw = select_bandwidth(g, replace(opts, dt=SP.DT_CAMPAIGN))
-    rows = tuple((fmt(p.wn), fmt(p.eh), fmt(p.ev), p.outcome, fmt(p.torque_saturated_s),
-                  "yes" if p.converged else "no") for p in bw.points)
     band = (f"the robust band is {bw.band[0]:g}-{bw.band[1]:g} rad/s and the rule picks "
-            f"{bw.wn:g} rad/s" if bw.band else "no bandwidth of the grid gives a completed, "
-            "converged run")
+            f"{bw.wn:g} rad/s" if bw.band else "no bandwidth of the grid is robust (completed "
+            "and on target at dt and dt/2, the orbit thrust never saturated after the failure)")
     fig = Figure("lunar_bandwidth.png",
                  "Final errors and the time the torque saturates against the command filter's "
                  f"natural frequency (Section 5, coupled pointing, RK4 at dt = "
@@ -168,8 +166,7 @@ def bandwidth_section(gains: Gains | None, opts: RunOptions, ideal: dict) -> Sec
                                   "bandwidth (coupled pointing)", chosen=opts.cmd_wn))
     return Section(
         "The command filter of the desired attitude: bandwidth swept",
-        columns=("wn rad/s", "e_h(t_f) m", "|e_v(t_f)| m/s", "outcome", "torque sat s",
-                 "dt/2 agrees"), rows=rows, figures=(fig,),
+        columns=bw.COLUMNS, rows=bw.rows(fmt), figures=(fig,),
         paragraphs=(
             "Seed 001's attitude law (27) needs omega_d and omega_d' of the desired attitude, "
             "which Section 4 takes from the commanded thrust direction without saying how it "
