@@ -311,8 +311,9 @@ def main() -> None:
         print(f"  outcome-class agreement before refinement: {r['before']} of {n} "
               f"({100 * r['before'] / n:.2f} %)")
         print(f"  refined (outcome changed at dt/2): {r['refined']}, settled "
-              f"{r['settled']} (at most {REFINE_HALVINGS} halvings; steps "
-              + ", ".join(f"{k} s x{v}" for k, v in sorted(r["steps"].items())) + ")")
+              f"{r['settled']} (at most {REFINE_HALVINGS} halvings"
+              + ("; steps " + ", ".join(f"{k} s x{v}" for k, v in sorted(r["steps"].items()))
+                 if r["steps"] else "") + ")")
         print(f"  outcome-class agreement after refinement:  {r['after']} of {n} "
               f"({100 * r['after'] / n:.2f} %)")
         for (a, b), c in r["pairs"].most_common():
