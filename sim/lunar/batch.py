@@ -280,6 +280,22 @@ def events(res: BatchResult, key: str = "orbit_saturated") -> list[list[tuple[st
     return ev
 
 
+def torque_saturation(t: np.ndarray, dt: np.ndarray, sat: np.ndarray) -> dict[str, float]:
+    """The two converged measures of the torque saturation from samples at times t (s), each
+    counting the interval dt after it (s) when its flag sat is set (the kernel's left-node rule,
+    ``lgw.sim.lunar.kernel``): the length of the saturation that starts at t = 0
+    (``torque_saturated_initial_s``, 0 when the first sample is within the limit) and the time
+    from which the command stays within its limit (``torque_saturation_end_s``, 0 when never
+    saturated).  The total time above the limit is not among them: the relay of (7) makes the
+    command chatter across the limit, and that total does not converge with the step
+    (``lgw.sim.lunar.parameters``, DT)."""
+    idx = np.flatnonzero(sat)
+    first_in = np.flatnonzero(~sat)
+    n0 = int(first_in[0]) if first_in.size else sat.size
+    return {"torque_saturated_initial_s": float(np.sum(dt[:n0])),
+            "torque_saturation_end_s": float(t[idx[-1]] + dt[idx[-1]]) if idx.size else 0.0}
+
+
 def warmup_kernels() -> list[tuple[str, object]]:
     """The compiled kernels of seed 001, as (name, build): the closed loop's kernel
     (``lgw.sim.lunar.kernel``), built by flying the Section 5 case for 0.1 s through
@@ -294,10 +310,14 @@ def warmup_kernels() -> list[tuple[str, object]]:
     return [("lunar", build)]
 
 
-# the integrands solve_ivp_numbers carries as extra states, in order: |B0 du|^2 of both loops
-# and the indicators of the saturated time (all, and the orbit's after t_after)
-_QUAD = ("B0du_orbit_L2", "B0du_attitude_L2", "orbit_saturated_s", "torque_saturated_s",
-         "orbit_saturated_after_failure_s")
+# the L2 norms of the filter states (11) of both loops over the flight (the kernel's
+# integrals, lgw.sim.lunar.kernel): what (18) bounds by the L2 norm of B0 du
+LAMBDA_L2 = ("lambda1_orbit_L2", "lambda2_orbit_L2", "lambda1_attitude_L2",
+             "lambda2_attitude_L2")
+# the integrands solve_ivp_numbers carries as extra states, in order: |B0 du|^2 of both loops,
+# the indicators of the orbit's saturated time (all, and after t_after), |lambda|^2
+_QUAD = ("B0du_orbit_L2", "B0du_attitude_L2", "orbit_saturated_s",
+         "orbit_saturated_after_failure_s", *LAMBDA_L2)
 
 
 def solve_ivp_numbers(ctx: Context, x0: np.ndarray, rtol: float = 1e-8, atol: float = 1e-8,
@@ -332,7 +352,7 @@ def solve_ivp_numbers(ctx: Context, x0: np.ndarray, rtol: float = 1e-8, atol: fl
     def f(t, x):
         X = aux(t, x)
         q = (X[36] ** 2 + X[37] ** 2 + X[38] ** 2, X[39] ** 2 + X[40] ** 2 + X[41] ** 2,
-             X[22], X[23], X[22] * (t >= t_after))
+             X[22], X[22] * (t >= t_after), X[56], X[57], X[58], X[59])
         return np.concatenate([Kk[0], q])
 
     z0 = np.concatenate([x0, np.zeros(nq)])
@@ -344,9 +364,10 @@ def solve_ivp_numbers(ctx: Context, x0: np.ndarray, rtol: float = 1e-8, atol: fl
     eh = np.empty(sol.t.size)
     eq0 = np.empty(sol.t.size)
     tcmd = np.empty(sol.t.size)
+    tsat = np.empty(sol.t.size, bool)
     for j, t in enumerate(sol.t):  # the node signals, as the kernel's trackers see them
         Xj = aux(t, sol.y[:, j])
-        eh[j], eq0[j], tcmd[j] = Xj[0], Xj[7], Xj[15]
+        eh[j], eq0[j], tcmd[j], tsat[j] = Xj[0], Xj[7], Xj[15], Xj[23] != 0.0
     after = sol.t >= t_after
     q = dict(zip(_QUAD, y[K.NY:], strict=True))
     n = {"eh_final_m": float(y[0] - rs[0]), "ev_final_norm_m_s": float(np.linalg.norm(ev)),
@@ -359,6 +380,8 @@ def solve_ivp_numbers(ctx: Context, x0: np.ndarray, rtol: float = 1e-8, atol: fl
          "d0e_orbit_final": float(y[11]), "d0e_attitude_final": float(y[25]),
          "B0du_orbit_L2": float(np.sqrt(q["B0du_orbit_L2"])),
          "B0du_attitude_L2": float(np.sqrt(q["B0du_attitude_L2"])),
-         **{k: float(q[k]) for k in _QUAD[2:]},
+         **{k: float(q[k]) for k in _QUAD[2:4]},
+         **{k: float(np.sqrt(q[k])) for k in LAMBDA_L2},
+         **torque_saturation(sol.t, np.diff(sol.t, append=sol.t[-1]), tsat),
          "evaluations": int(sol.nfev), "steps": int(sol.t.size - 1)}
     return n, sol

@@ -45,12 +45,14 @@ BYTES_PER_CASE = 1024
 NUMBERS = ("eh_final_m", "ev_final_norm_m_s", "max_abs_eh_m", "max_abs_ev_m_s",
            "max_abs_eh_after_failure_m", "orbit_saturated_s",
            "orbit_saturated_after_failure_s", "thrust_cmd_max_after_failure_N",
-           "torque_saturated_s", "d0e_orbit_final", "d0e_attitude_final", "min_abs_eq0",
+           "torque_saturated_initial_s", "torque_saturation_end_s", "d0e_orbit_final",
+           "d0e_attitude_final", "min_abs_eq0",
            "mass_final_kg", "t_outcome_s")
 UNITS = {"eh_final_m": "m", "ev_final_norm_m_s": "m/s", "max_abs_eh_m": "m",
          "max_abs_ev_m_s": "m/s", "max_abs_eh_after_failure_m": "m", "orbit_saturated_s": "s",
          "orbit_saturated_after_failure_s": "s", "thrust_cmd_max_after_failure_N": "N",
-         "torque_saturated_s": "s", "d0e_orbit_final": "m/s^2",
+         "torque_saturated_initial_s": "s", "torque_saturation_end_s": "s",
+         "d0e_orbit_final": "m/s^2",
          "d0e_attitude_final": "rad/s^2", "min_abs_eq0": "1", "mass_final_kg": "kg",
          "t_outcome_s": "s"}
 COUNTED = ("completed",)  # outcomes whose cases enter the statistics

@@ -46,12 +46,17 @@ QUOTED: dict[str, tuple[str, float]] = {
     "thrust_cmd_max_after_failure_N": ("N", 1000.0),  # 10 N
     "orbit_saturated_s": ("s", 1.0),  # 10 ms
     "orbit_saturated_after_failure_s": ("s", 1.0),
-    "torque_saturated_s": ("s", 1.0),
+    "torque_saturated_initial_s": ("s", 1.0),
+    "torque_saturation_end_s": ("s", 1.0),
     "d0e_orbit_final": ("m/s^2", 1e-3),
     "d0e_attitude_final": ("rad/s^2", 1e-5),
     "min_abs_eq0": ("1", 0.1),  # 1e-3
     "B0du_orbit_L2": ("m/s^2 s^0.5", 1.0),
     "B0du_attitude_L2": ("rad/s^2 s^0.5", 1.0),
+    "lambda1_orbit_L2": ("m s^0.5", 1.0),
+    "lambda2_orbit_L2": ("m/s s^0.5", 1.0),
+    "lambda1_attitude_L2": ("s^0.5", 0.1),
+    "lambda2_attitude_L2": ("rad/s s^0.5", 0.1),
 }
 
 

@@ -43,14 +43,16 @@ AUX = {"eh": (0, 1), "ev": (1, 3), "d_orbit": (4, 3), "eq": (7, 4), "ew": (11, 3
        "z2o": (25, 3), "z1a": (28, 3), "z2a": (31, 3), "V2o_part": (34, 1),
        "V2a_part": (35, 1), "B0du_o": (36, 3), "B0du_a": (39, 3), "height": (42, 1),
        "quat_norm_err": (43, 1), "failure_factor": (44, 1), "uco": (45, 3), "nzo": (48, 1),
-       "nza": (49, 1), "f2a": (50, 3)}
+       "nza": (49, 1), "f2a": (50, 3), "lam_sq": (56, 4)}
 # after the sampled signals: over the rhs calls of the current step attempt (reset at its
 # first stage), the max delivered thrust (53) and the max commanded magnitude (54)
 XPKT = 53
 XPKTC = 54
 # 1.0 if a rhs call of the current step attempt asked for a blown-up command (sys_rhs)
 XBLOWN = 55
-NX = 56
+# lam_sq: |lambda1|^2, |lambda2|^2 of the orbit filter (11), then of the attitude filter (the
+# integrands of the measured ||lambda||_L2 that (18) bounds)
+NX = 60
 # outcome codes (names in lgw.sim.lunar.outcomes.OUTCOMES)
 COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM, BLOWN, BELOW = range(8)
 # A delivered thrust above BLOWUP_ACCEL m0 (N; m0 the case's initial mass) is no thrust (1e5
@@ -62,8 +64,9 @@ COMPLETED, SURFACE, DRY, QUAT, NONFINITE, STEPLIM, BLOWN, BELOW = range(8)
 BLOWUP_ACCEL = 1e5
 # tracker slots
 (PKT, PKTC, PKM, TSO, TSA, NENT, TENT, TEXIT, TFAIL, TEXC, V2OMAX, V2AMAX, HMIN, OUT, TOUT,
- PKTS, PKTCS, TAI, TAFT, TSOAF, PKTCAF, EHMAX, EVMAX, EHMAXAF, MINEQ0, L2BO, L2BA) = range(27)
-NS = 27
+ PKTS, PKTCS, TAI, TAFT, TSOAF, PKTCAF, EHMAX, EVMAX, EHMAXAF, MINEQ0, L2BO, L2BA, TSAI,
+ TSAE, TSAIO, L2L1O, L2L2O, L2L1A, L2L2A) = range(34)
+NS = 34
 # peak_thrust, peak_thrust_cmd: at the nodes (t = 0 and each accepted step's left node);
 # peak_thrust_stages, peak_thrust_cmd_stages: also over every rhs evaluation of those steps
 # (trial states and new node; >= the node peaks), as seed 000 (lgw.sim.mars.batch)
@@ -71,7 +74,14 @@ NS = 27
 # over the accepted nodes from t_after (C) on (NaN: the case stopped before t_after);
 # max_abs_eh, max_abs_ev, min_abs_eq0: over the accepted nodes (the Monte Carlo statistics, no
 # records); B0du_orbit_L2, B0du_attitude_L2: sqrt of the integral of |B0 du|^2 over the flight
-# (trapezoidal rule on every accepted step; the inputs of (18))
+# (trapezoidal rule on every accepted step; the inputs of (18)); lambda1_orbit_L2, ...,
+# lambda2_attitude_L2: the same for the filter states (11) (the outputs (18) bounds);
+# time_saturated_torque_initial: the length of the torque saturation that starts at t = 0 (0 s
+# when the command starts within its limit); torque_saturation_end: the time from which the
+# torque command stays within its limit (0 s: never saturated).  A step counts as saturated
+# when its left node is (as time_saturated_torque).  Unlike the total time saturated, both
+# converge when the relay of (7) makes the command chatter across the limit
+# (lgw.sim.lunar.parameters, DT)
 RESULT_FIELDS = ("outcome", "t_outcome", "peak_thrust", "peak_thrust_cmd", "peak_torque",
                  "time_saturated_orbit", "time_saturated_torque", "sat_entries",
                  "sat_first_entry", "sat_last_exit", "t_failure", "thrust_excess_saturated",
@@ -79,7 +89,9 @@ RESULT_FIELDS = ("outcome", "t_outcome", "peak_thrust", "peak_thrust_cmd", "peak
                  "peak_thrust_cmd_stages", "time_saturated_orbit_after_failure",
                  "peak_thrust_cmd_after_failure", "max_abs_eh", "max_abs_ev",
                  "max_abs_eh_after_failure", "min_abs_eq0", "B0du_orbit_L2",
-                 "B0du_attitude_L2")
+                 "B0du_attitude_L2", "time_saturated_torque_initial", "torque_saturation_end",
+                 "lambda1_orbit_L2", "lambda2_orbit_L2", "lambda1_attitude_L2",
+                 "lambda2_attitude_L2")
 ZETA = 0.9  # damping of the desired-attitude command filter (lgw.sim.lunar.closed_loop.ZETA)
 TINY = 1e-150  # ||z2|| floor of the adaptive term (lgw.sim.lunar.laws.TINY)
 
@@ -193,6 +205,13 @@ def sys_init(i, C, Q, y, S):  # noqa: N803
     S[MINEQ0] = math.inf  # noqa: F821
     S[L2BO] = 0.0  # noqa: F821
     S[L2BA] = 0.0  # noqa: F821
+    S[TSAI] = 0.0  # noqa: F821
+    S[TSAE] = 0.0  # noqa: F821
+    S[TSAIO] = 1.0  # noqa: F821  (the initial saturation is still running)
+    S[L2L1O] = 0.0  # noqa: F821
+    S[L2L2O] = 0.0  # noqa: F821
+    S[L2L1A] = 0.0  # noqa: F821
+    S[L2L2A] = 0.0  # noqa: F821
 
 
 def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
@@ -454,6 +473,10 @@ def sys_rhs(t, Y, yr, K, kr, X, i, C, Q):  # noqa: N803
     X[42] = r - R_MOON  # noqa: F821
     X[43] = abs(math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3) - 1.0)
     X[44] = fac
+    X[56] = y[7] * y[7]
+    X[57] = y[8] * y[8] + y[9] * y[9] + y[10] * y[10]
+    X[58] = y[19] * y[19] + y[20] * y[20] + y[21] * y[21]
+    X[59] = y[22] * y[22] + y[23] * y[23] + y[24] * y[24]
     # the lumped disturbance of (22b), d_o = e_v' + u_o / m (the reference's own model)
     s = a2 * t + a3
     ca = math.cos(math.atan(s))
@@ -480,6 +503,11 @@ def _node_metrics(t, XL, X, S, C, Q, frac, h):  # noqa: N803
         S[TEXC] = max(S[TEXC], XL[14] - XL[44] * Tmax)  # noqa: F821
     if XL[23] != 0.0:
         S[TSA] += frac * h  # noqa: F821
+        S[TSAE] = t + frac * h  # noqa: F821
+        if S[TSAIO] != 0.0:  # noqa: F821
+            S[TSAI] += frac * h  # noqa: F821
+    else:
+        S[TSAIO] = 0.0  # noqa: F821
     eh = abs(XL[0])
     ev = math.sqrt(XL[1] * XL[1] + XL[2] * XL[2] + XL[3] * XL[3])
     S[EHMAX] = max(S[EHMAX], eh)  # noqa: F821
@@ -492,6 +520,10 @@ def _node_metrics(t, XL, X, S, C, Q, frac, h):  # noqa: N803
                            + wr * (X[36] * X[36] + X[37] * X[37] + X[38] * X[38]))
     S[L2BA] += frac * h * ((1.0 - wr) * (XL[39] * XL[39] + XL[40] * XL[40] + XL[41] * XL[41])  # noqa: F821
                            + wr * (X[39] * X[39] + X[40] * X[40] + X[41] * X[41]))
+    S[L2L1O] += frac * h * ((1.0 - wr) * XL[56] + wr * X[56])  # noqa: F821
+    S[L2L2O] += frac * h * ((1.0 - wr) * XL[57] + wr * X[57])  # noqa: F821
+    S[L2L1A] += frac * h * ((1.0 - wr) * XL[58] + wr * X[58])  # noqa: F821
+    S[L2L2A] += frac * h * ((1.0 - wr) * XL[59] + wr * X[59])  # noqa: F821
     if t >= S[TAFT]:  # noqa: F821  (after the failure: from t_after on)
         if math.isnan(S[TSOAF]):  # noqa: F821
             S[TSOAF] = 0.0  # noqa: F821
@@ -593,7 +625,8 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
 
 def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     (outc, tout, pkt, pktc, pkm, tso, tsa, nent, tent, texit, tfail, texc, v2o, v2a,
-     hmin, pkts, pktcs, tsoaf, pktcaf, ehmax, evmax, ehmaxaf, mineq0, l2bo, l2ba) = R
+     hmin, pkts, pktcs, tsoaf, pktcaf, ehmax, evmax, ehmaxaf, mineq0, l2bo, l2ba, tsai,
+     tsae, l2l1o, l2l2o, l2l1a, l2l2a) = R
     outc[i] = int(S[OUT])  # noqa: F821
     tout[i] = S[TOUT] if S[OUT] != COMPLETED else t  # noqa: F821
     pkt[i] = S[PKT]  # noqa: F821
@@ -619,6 +652,12 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     mineq0[i] = S[MINEQ0]  # noqa: F821
     l2bo[i] = math.sqrt(S[L2BO])  # noqa: F821
     l2ba[i] = math.sqrt(S[L2BA])  # noqa: F821
+    tsai[i] = S[TSAI]  # noqa: F821
+    tsae[i] = S[TSAE]  # noqa: F821
+    l2l1o[i] = math.sqrt(S[L2L1O])  # noqa: F821
+    l2l2o[i] = math.sqrt(S[L2L2O])  # noqa: F821
+    l2l1a[i] = math.sqrt(S[L2L1A])  # noqa: F821
+    l2l2a[i] = math.sqrt(S[L2L2A])  # noqa: F821
 
 
 HOOKS = (sys_init, sys_rhs, _node_metrics, sys_start, sys_step, sys_finish)
@@ -627,7 +666,9 @@ SLOTS = {"PKT": PKT, "PKTC": PKTC, "PKM": PKM, "TSO": TSO, "TSA": TSA, "NENT": N
          "V2AMAX": V2AMAX, "HMIN": HMIN, "OUT": OUT, "TOUT": TOUT, "PKTS": PKTS,
          "PKTCS": PKTCS, "TAI": TAI, "TAFT": TAFT, "TSOAF": TSOAF, "PKTCAF": PKTCAF,
          "EHMAX": EHMAX, "EVMAX": EVMAX, "EHMAXAF": EHMAXAF, "MINEQ0": MINEQ0,
-         "L2BO": L2BO, "L2BA": L2BA, "XPKT": XPKT, "XPKTC": XPKTC, "XBLOWN": XBLOWN, "BLOWN": BLOWN,
+         "L2BO": L2BO, "L2BA": L2BA, "TSAI": TSAI, "TSAE": TSAE, "TSAIO": TSAIO,
+         "L2L1O": L2L1O, "L2L2O": L2L2O, "L2L1A": L2L1A, "L2L2A": L2L2A,
+         "XPKT": XPKT, "XPKTC": XPKTC, "XBLOWN": XBLOWN, "BLOWN": BLOWN,
          "COMPLETED": COMPLETED, "BELOW": BELOW,
          "SURFACE": SURFACE, "DRY": DRY, "QUAT": QUAT, "NONFINITE": NONFINITE}
 CONSTS = {"BLOW_ACC": BLOWUP_ACCEL, "R_MOON": P.R_MOON, "MU_MOON": P.MU_MOON,

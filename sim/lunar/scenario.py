@@ -15,7 +15,14 @@ from typing import Any
 import numpy as np
 import sympy as sp
 from lgw.sim.lunar import parameters as SP
-from lgw.sim.lunar.batch import BatchResult, events, l2_norm, rk4_batch
+from lgw.sim.lunar.batch import (
+    LAMBDA_L2,
+    BatchResult,
+    events,
+    l2_norm,
+    rk4_batch,
+    torque_saturation,
+)
 from lgw.sim.lunar.closed_loop import RunOptions, initial_state, make_context
 from lgw.sim.lunar.reference import reference
 from lgw.theory.evidence import Claim, Inequality, Search, Step, Witness
@@ -82,7 +89,7 @@ def summarize(res: BatchResult, ctx, i: int = 0) -> Summary:
         "thrust_cmd_max_after_failure_N": _max(o["thrust_cmd"][after, i]),
         "orbit_saturated_s": float(np.sum(dt_rec[sat])),
         "orbit_saturated_after_failure_s": float(np.sum(dt_rec[sat & after])),
-        "torque_saturated_s": float(np.sum(dt_rec[tsat])),
+        **torque_saturation(t, dt_rec, tsat),
         "orbit_saturation_events": events(res, "orbit_saturated")[i][:6],
         "d0e_orbit_final": float(o["d0e_orbit"][-1, i]),
         "d0e_attitude_final": float(o["d0e_attitude"][-1, i]),
@@ -98,6 +105,8 @@ def summarize(res: BatchResult, ctx, i: int = 0) -> Summary:
         "eq_final": o["eq"][-1, :, i].tolist(),
         "B0du_orbit_L2": float(l2_norm(t, o["B0du_o"])[i]),
         "B0du_attitude_L2": float(l2_norm(t, o["B0du_a"])[i]),
+        **{k: float(l2_norm(t, o[rec])[i]) for k, rec in zip(
+            LAMBDA_L2, ("lam1o", "lam2o", "lam1a", "lam2a"), strict=True)},
         "flagged": [f for f in res.flagged if f[0] == i],
     }
     c = res.cases
@@ -121,7 +130,8 @@ def case_numbers(c: dict, ctx, i: int = 0) -> dict:
             "orbit_saturated_s": float(c["time_saturated_orbit"][i]),
             "orbit_saturated_after_failure_s": _zero_if_nan(
                 c["time_saturated_orbit_after_failure"][i]),
-            "torque_saturated_s": float(c["time_saturated_torque"][i]),
+            "torque_saturated_initial_s": float(c["time_saturated_torque_initial"][i]),
+            "torque_saturation_end_s": float(c["torque_saturation_end"][i]),
             "thrust_cmd_max_after_failure_N": float(c["peak_thrust_cmd_after_failure"][i]),
             "max_abs_eh_m": max(float(c["max_abs_eh"][i]), abs(eh)),
             "max_abs_ev_m_s": max(float(c["max_abs_ev"][i]), float(np.linalg.norm(ev))),
@@ -129,6 +139,7 @@ def case_numbers(c: dict, ctx, i: int = 0) -> dict:
             "min_abs_eq0": float(c["min_abs_eq0"][i]),
             "B0du_orbit_L2": float(c["B0du_orbit_L2"][i]),
             "B0du_attitude_L2": float(c["B0du_attitude_L2"][i]),
+            **{k: float(c[k][i]) for k in LAMBDA_L2},
             "d0e_orbit_final": float(y[11]), "d0e_attitude_final": float(y[25]),
             "mass_final_kg": float(y[6]),
             "outcome": _outcome_name(c["outcome"][i]),

@@ -1,5 +1,5 @@
 """Seed 001's Section 5 numbers are converged at the default step: the default run against the
-same run at dt/4 (every quoted number but the one documented exception), and against a tight
+same run at dt/4 (every quoted number), and against a tight
 adaptive reference of the same loop (slow).  The check itself must catch a difference, and a
 stopped case must not count as saturated after it stopped.
 """
@@ -16,10 +16,12 @@ from lgw.sim.lunar import parameters as SP
 from lgw.sim.lunar.closed_loop import RunOptions
 from lgw.sim.lunar.scenario import fly_section5, section5_case, summarize
 
-# the one quoted number of the coupled Section 5 run that does not converge to 1 % at any
-# step (sim/lunar/parameters.py: the time the torque command of the paper's relay law spends
-# above the limit of (28) while it chatters on it depends on the chattering, not on the flight)
-KNOWN_UNCONVERGED = {"coupled": {"torque_saturated_s"}, "ideal": set()}
+# With ideal pointing the thrust follows the command, so the attitude loop does not act on the
+# flight; its torque stays saturated for the whole descent and the attitude tumbles through
+# 180 degrees (min |e_q0| ~ 1e-7), so its numbers are chaotic in the step (the filter states'
+# L2 norms: 12.08, 11.59, 11.74, 12.16, 11.36, 10.79 from dt to dt/32; docs/lunar.md,
+# "Convergence"), and the check may flag them.  Every number of the flight must converge.
+_ATTITUDE_LOOP = {k for k in CV.QUOTED if "attitude" in k}
 
 
 def test_the_check_flags_a_difference_above_one_percent():
@@ -52,8 +54,12 @@ def test_section5_default_run_agrees_with_dt_over_4(pointing):
     conv = f.convergence
     assert conv.dt == SP.DT and math.isclose(conv.refined_dt, SP.DT / 4)
     assert conv.outcome == conv.refined_outcome == "completed"
+    assert {c.name for c in conv.checks} == set(CV.QUOTED)
     bad = {c.name for c in conv.unconverged}
-    assert bad == KNOWN_UNCONVERGED[pointing], [c.to_dict() for c in conv.unconverged]
+    if pointing == "coupled":  # the paper's loop: every quoted number
+        assert not bad, [c.to_dict() for c in conv.unconverged]
+    else:
+        assert bad <= _ATTITUDE_LOOP, [c.to_dict() for c in conv.unconverged]
     # the headline numbers, to 1 %
     for key in ("eh_final_m", "ev_final_norm_m_s", "max_abs_eh_m", "orbit_saturated_s"):
         c = next(x for x in conv.checks if x.name == key)
@@ -71,7 +77,8 @@ def test_saturated_time_stops_with_the_case():
     s = summarize(res, ctx).numbers
     assert s["outcome"] == "crashed"
     assert s["orbit_saturated_s"] <= s["t_outcome_s"] + 1e-9
-    assert s["torque_saturated_s"] <= s["t_outcome_s"] + 1e-9
+    tsat = (s["torque_saturated_initial_s"], s["torque_saturation_end_s"])
+    assert tsat[0] <= tsat[1] <= s["t_outcome_s"] + 1e-9
     # the record-based count agrees with the kernel's per-step count once it stops at t_stop
     t = res.t
     flying = t < s["t_outcome_s"]
@@ -97,7 +104,53 @@ def test_section5_against_solve_ivp(pointing):
     c = CV.compare(a, ref, SP.DT, 0.0, "completed", "completed")
     assert len(c.checks) == len(CV.QUOTED)
     bad = {x.name for x in c.checks if not x.converged}
-    assert bad == KNOWN_UNCONVERGED[pointing], [x.to_dict() for x in c.checks]
+    assert bad <= (_ATTITUDE_LOOP if pointing == "ideal" else set()), [
+        x.to_dict() for x in c.checks]
+
+
+def test_kernel_measures_agree_with_the_records():
+    """The kernel's two torque-saturation numbers (left-node rule on every step) against the
+    same measures of the per-step records of the run (``torque_saturation`` on the flags), and
+    the total above the limit that they replace bounds them: the initial span is part of it;
+    the same for the L2 norms of the filter states (11) that the report's (18) rows quote."""
+    from lgw.sim.lunar.batch import rk4_batch, torque_saturation
+    from lgw.sim.lunar.scenario import case_numbers
+
+    o = RunOptions(dt=SP.DT_CAMPAIGN, t_end=60.0)
+    ctx, X0 = section5_case(opts=o)
+    res = rk4_batch(ctx, X0, record_every=1)
+    k = case_numbers(res.cases, ctx)
+    t = res.t
+    r = torque_saturation(t, np.diff(t, append=t[-1]), res.out["torque_saturated"][:, 0])
+    assert k["torque_saturated_initial_s"] > 1.0 and k["torque_saturation_end_s"] > 30.0
+    for key in r:
+        assert k[key] == pytest.approx(r[key], abs=1e-9), key
+    total = float(res.cases["time_saturated_torque"][0])
+    assert k["torque_saturated_initial_s"] < total <= k["torque_saturation_end_s"] + 1e-9
+    # the filter states' L2 norms: the kernel's trapezoids over every step against the same
+    # rule over the per-step records of the states
+    from lgw.sim.lunar.batch import LAMBDA_L2, l2_norm
+
+    for key, rec in zip(LAMBDA_L2, ("lam1o", "lam2o", "lam1a", "lam2a"), strict=True):
+        assert k[key] > 0
+        assert k[key] == pytest.approx(float(l2_norm(t, res.out[rec])[0]), rel=1e-9), key
+
+
+def test_torque_saturation_of_flags():
+    t = np.arange(6.0)
+    dt = np.ones(6)
+    f = np.array
+    assert torque_saturation_of(t, dt, f([1, 1, 0, 1, 0, 0])) == (2.0, 4.0)
+    assert torque_saturation_of(t, dt, f([0, 1, 0, 0, 0, 0])) == (0.0, 2.0)
+    assert torque_saturation_of(t, dt, f([0, 0, 0, 0, 0, 0])) == (0.0, 0.0)
+    assert torque_saturation_of(t, dt, f([1, 1, 1, 1, 1, 1])) == (6.0, 6.0)
+
+
+def torque_saturation_of(t, dt, flags):
+    from lgw.sim.lunar.batch import torque_saturation
+
+    r = torque_saturation(t, dt, flags.astype(bool))
+    return r["torque_saturated_initial_s"], r["torque_saturation_end_s"]
 
 
 def _fields(t: float, X: np.ndarray, ctx) -> tuple[np.ndarray, np.ndarray]:

@@ -135,3 +135,14 @@ def test_tune_below_the_redundancy_is_infeasible_and_writes_nothing(tmp_path):
     r = run_lgw(["tune", "lunar", "--thrust-max", "34000", "--out", str(out)])
     assert r.code == 3 and not out.exists()
     assert "34285.7" in r.stderr and "nothing written" in r.stderr
+
+
+def test_tune_text_names_a_missing_band():
+    """The tuner's text output with no robust band on the sweep (the certificate then carries
+    an empty band and says which wn it flew): the band's line says so instead of failing."""
+    from lgw.tuning.lunar.cmd_tune import _band
+    from lgw.tuning.tables import fmt
+
+    cert = {"cmd_band_rad_s": [], "cmd_wn_evidence": "sampled: 3 bandwidths, none robust"}
+    assert _band(cert, fmt) == "no robust band: sampled: 3 bandwidths, none robust"
+    assert _band({**cert, "cmd_band_rad_s": [25.0, 35.0]}, fmt) == "robust band 25-35"

@@ -90,8 +90,9 @@ def _opts_doc(o: Any) -> dict[str, Any]:
 def _sweep_caption(bw: Any, base: Any) -> str:
     band = (f"robust band {bw.band[0]:g}-{bw.band[1]:g} rad/s, the rule's choice "
             f"{bw.wn:g} rad/s" if bw.band else "no robust band")
-    return ("Final errors and time the torque saturates against the command filter's natural "
-            f"frequency, Section 5 case, coupled pointing, RK4 at dt = {base.dt:g} s (filled) "
+    return ("Final errors and the time the torque saturation ends against the command "
+            f"filter's natural frequency, Section 5 case, coupled pointing, RK4 at dt = "
+            f"{base.dt:g} s (filled) "
             f"and dt/2 (open); {band}; the vertical line is the wn flown in the comparison "
             f"({base.cmd_wn:g} rad/s); crosses at the top: runs that stopped (surface contact).")
 
@@ -102,11 +103,13 @@ def _render(con: Any, rows: list[Any], bw: Any, notes: list[str]) -> None:
     table = [(r.condition, r.pointing, fmt(r.numbers["eh_final_m"]),
               fmt(r.numbers["ev_final_norm_m_s"]), fmt(r.numbers["max_abs_eh_m"]),
               fmt(r.numbers["orbit_saturated_after_failure_s"]),
-              fmt(r.numbers["torque_saturated_s"]), r.numbers["outcome"],
+              fmt(r.numbers["torque_saturated_initial_s"]),
+              fmt(r.numbers["torque_saturation_end_s"]), r.numbers["outcome"],
               "yes" if r.convergence.converged else "NO") for r in rows]
     result_table(con, "seed 001 Section 5: failure and saturation, ideal and coupled pointing",
                  ("condition", "pointing", "e_h(t_f) m", "|e_v(t_f)| m/s", "max|e_h| m",
-                  "sat after failure s", "torque sat s", "outcome", "dt/4 agrees"), table)
+                  "sat after failure s", "torque sat from 0 s", "torque sat ends s", "outcome",
+                  "dt/4 agrees"), table)
     if bw is not None:
         result_table(con, "command-filter bandwidth, Section 5, coupled"
                      + (f": robust band {fmt(bw.band[0])}-{fmt(bw.band[1])} rad/s, choice "

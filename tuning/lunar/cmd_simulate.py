@@ -226,13 +226,15 @@ def _render(con: Any, ref: Any, opts: Any, sums: list[dict[str, Any]],
               markup=False)
     rows = [(str(i), fmt(s["eh_final_m"]), fmt(s["ev_final_norm_m_s"]),
              fmt(s["max_abs_eh_m"]), fmt(s["orbit_saturated_s"]),
-             fmt(s["orbit_saturated_after_failure_s"]), fmt(s["torque_saturated_s"]),
+             fmt(s["orbit_saturated_after_failure_s"]), fmt(s["torque_saturated_initial_s"]),
+             fmt(s["torque_saturation_end_s"]),
              f"{fmt(s['d0e_orbit_final'])}/{fmt(s['d0e_attitude_final'])}",
              f"{s['outcome']} at {fmt(s['t_outcome_s'])} s")
             for i, s in enumerate(sums)]
     result_table(con, "seed 001: the Section 5 case",
                  ("case", "e_h(t_f) m", "|e_v(t_f)| m/s", "max|e_h| m", "orbit sat s",
-                  "sat after failure s", "torque sat s", "d0e orbit/att", "outcome"), rows)
+                  "sat after failure s", "torque sat from 0 s", "torque sat ends s",
+                  "d0e orbit/att", "outcome"), rows)
     crow = [(c.name, f"{c.value:.6g}", f"{c.refined:.6g}", f"{100 * c.difference:.3g} %",
              "yes" if c.converged else "NO") for c in conv.checks]
     result_table(con, f"convergence: dt = {conv.dt:g} s against dt/4 = {conv.refined_dt:g} s "

@@ -102,6 +102,14 @@ class TuneJob(Job):
                        files={"gains.toml": text})
 
 
+def _band(cert: dict[str, Any], fmt: Any) -> str:
+    """The robust band of the certificate's sweep, or why the wn flown is not from one."""
+    band = cert["cmd_band_rad_s"]
+    if band:
+        return f"robust band {fmt(band[0])}-{fmt(band[1])}"
+    return "no robust band: " + cert["cmd_wn_evidence"]
+
+
 def _render(con: Any, res: Any, cert: dict[str, Any]) -> None:
     from lgw.tuning.tables import fmt, result_table
 
@@ -110,8 +118,7 @@ def _render(con: Any, res: Any, cert: dict[str, Any]) -> None:
             ("orbit K1 (diag)", ", ".join(fmt(x) for x in g.orbit.K1.diagonal())),
             ("orbit f3, q, d0e(0)", f"{fmt(g.orbit.f3)}, {fmt(g.orbit.q)}, {fmt(g.orbit.d0e0)}"),
             ("attitude K1, F2 (diag)", f"{fmt(g.attitude.K1[0, 0])}, {fmt(g.attitude.F2[0, 0])}"),
-            ("command filter wn", f"{fmt(cert['cmd_wn_rad_s'])} rad/s (robust band "
-             f"{fmt(cert['cmd_band_rad_s'][0])}-{fmt(cert['cmd_band_rad_s'][1])})"),
+            ("command filter wn", f"{fmt(cert['cmd_wn_rad_s'])} rad/s ({_band(cert, fmt)})"),
             ("T_max", f"{fmt(cert['thrust_max_N'])} N "
              f"({'sized' if cert['thrust_sized'] else 'given'}; needed "
              f"{fmt(cert['thrust_required_N'])} N)")]

@@ -21,7 +21,8 @@ CONDITIONS = (("no failure, no saturation", "none", False),
 POINTINGS = ("ideal", "coupled")
 NUMBERS = ("eh_final_m", "ev_final_norm_m_s", "max_abs_eh_m", "max_abs_ev_m_s",
            "orbit_saturated_s", "orbit_saturated_after_failure_s",
-           "thrust_cmd_max_after_failure_N", "torque_saturated_s", "min_abs_eq0",
+           "thrust_cmd_max_after_failure_N", "torque_saturated_initial_s",
+           "torque_saturation_end_s", "min_abs_eq0",
            "d0e_attitude_final", "outcome", "t_outcome_s")
 
 

@@ -174,7 +174,7 @@ class SweepPoint:
     ev_fine: float
     outcome: str
     outcome_fine: str
-    torque_saturated_s: float
+    torque_saturation_end_s: float
     orbit_saturated_after_failure_s: float
     score: float
     score_fine: float
@@ -196,13 +196,13 @@ class Bandwidth:
     best_score: float | None
     robust: tuple[float, ...] = ()
 
-    COLUMNS = ("wn rad/s", "e_h(t_f) m", "|e_v(t_f)| m/s", "outcome", "torque sat s",
+    COLUMNS = ("wn rad/s", "e_h(t_f) m", "|e_v(t_f)| m/s", "outcome", "torque sat ends s",
                "sat after failure s", "dt/2 agrees", "robust")
 
     def rows(self, fmt: Callable[[Any], str]) -> tuple[tuple[str, ...], ...]:
         """The sweep as table rows (``COLUMNS``, numbers by ``fmt``: the report's or the
         terminal's): what the rule judged at each point."""
-        return tuple((fmt(p.wn), fmt(p.eh), fmt(p.ev), p.outcome, fmt(p.torque_saturated_s),
+        return tuple((fmt(p.wn), fmt(p.eh), fmt(p.ev), p.outcome, fmt(p.torque_saturation_end_s),
                       fmt(p.orbit_saturated_after_failure_s), "yes" if p.converged else "no",
                       "yes" if p.wn in self.robust else "no") for p in self.points)
 
@@ -257,7 +257,7 @@ def sweep_bandwidth(gains: Gains, opts: RunOptions, grid: tuple[float, ...], eh_
 
         pts.append(SweepPoint(float(wn), a["eh_final_m"], a["ev_final_norm_m_s"],
                               b["eh_final_m"], b["ev_final_norm_m_s"], a["outcome"],
-                              b["outcome"], a["torque_saturated_s"],
+                              b["outcome"], a["torque_saturation_end_s"],
                               a["orbit_saturated_after_failure_s"], score(a), score(b),
                               bool(a["outcome"] == OUTCOMES[0] and conv.converged)))
         if progress is not None:
@@ -359,7 +359,7 @@ def acceptance(gains: Gains, opts: RunOptions, req: Request, seed: int,
             "thrust_margin": worst(pk, opts.thrust_max),
             "orbit_saturated_after_failure_max_s": float(np.nanmax(
                 nums["orbit_saturated_after_failure_s"])),
-            "torque_saturated_max_s": float(np.nanmax(nums["torque_saturated_s"])),
+            "torque_saturation_end_max_s": float(np.nanmax(nums["torque_saturation_end_s"])),
             "refined_cases": k, "refined_meets": bool(fine_meets and conv_outcome),
             "refined_max_difference": float(max(rel)) if rel else 0.0, "dt": opts.dt}
 
@@ -539,7 +539,7 @@ def certificate(res: TuneResult, req: Request, command: str = "") -> dict[str, A
         "thrust_margin": acc["thrust_margin"],
         "refined_cases": acc["refined_cases"], "refined_meets": acc["refined_meets"],
         "refined_max_difference": acc["refined_max_difference"],
-        "torque_saturated_max_s": acc["torque_saturated_max_s"],
+        "torque_saturation_end_max_s": acc["torque_saturation_end_max_s"],
         # coupled pointing (reported; promised only when pointing = "coupled")
         "coupled_cases": res.coupled.get("cases", 0),
         "coupled_completed": res.coupled.get("completed", 0),

@@ -279,7 +279,7 @@ def section5_png(res, i: int = 0, ideal=None) -> bytes:
 def bandwidth_figure(bw, ideal: dict | None, title: str, targets: tuple[float, float]
                      | None = None, chosen: float | None = None) -> bytes:
     """The command filter's effect (``lgw.tuning.lunar.design.Bandwidth``): final height and
-    velocity errors and the time the torque saturates against wn (log axis), the run at dt
+    velocity errors and the time the torque saturation ends against wn (log axis), the run at dt
     (filled) and at dt/2 (open) for every wn, surface contact and other stops marked at the
     top, the robust band shaded, the chosen wn marked, and the ideal-pointing run (``ideal``:
     its numbers) as a horizontal line."""
@@ -309,9 +309,9 @@ def bandwidth_figure(bw, ideal: dict | None, title: str, targets: tuple[float, f
                 limit_line(a, tgt, "target")
             a.set_yscale("log")
             a.set_ylabel(label)
-        ax[2].plot(wn, [p.torque_saturated_s for p in pts], "o-", color="C3",
+        ax[2].plot(wn, [p.torque_saturation_end_s for p in pts], "o-", color="C3",
                    label="coupled, dt")
-        ax[2].set_ylabel("torque (28) saturated [s]")
+        ax[2].set_ylabel("torque (28) saturated until [s]")
         for a in ax:
             a.set_xscale("log")
             a.set_xlabel("command filter natural frequency wn [rad/s] (log)")
@@ -322,7 +322,7 @@ def bandwidth_figure(bw, ideal: dict | None, title: str, targets: tuple[float, f
                 a.axvline(chosen, color="#1b7837", lw=1.4, label=f"wn = {chosen:g} rad/s")
         ax[0].set_title("(a) height error at t_f")
         ax[1].set_title("(b) velocity error at t_f")
-        ax[2].set_title("(c) time the torque saturates")
+        ax[2].set_title("(c) when the torque saturation ends")
         shared_legend(fig, ax, ncol=4)
         fig.suptitle(title)
         fig.tight_layout(rect=(0, 0.1, 1, 1))
