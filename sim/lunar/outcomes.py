@@ -71,6 +71,12 @@ def json_safe(x):
     return x
 
 
+# kernel results no output prints: the total time the torque is above its limit does not
+# converge with the step (the relay of (7) chatters across it, lgw.sim.lunar.parameters, DT);
+# the records carry its converged measures (time_saturated_torque_initial, torque_saturation_end)
+UNQUOTED = ("time_saturated_torque",)
+
+
 def case_record(results: dict, i: int) -> dict:
     """Case i of a kernel run's per-case results (``BatchResult.cases``) as a JSON-ready dict:
     its one outcome and time, and the sampled quantities (None where undefined, e.g. no
@@ -80,7 +86,8 @@ def case_record(results: dict, i: int) -> dict:
     rec = {"outcome": OUTCOMES[int(results["outcome"][i])],
            "t_outcome_s": float(results["t_outcome"][i])}
     for k in RESULT_FIELDS[2:]:
-        rec[k] = results[k][i]
+        if k not in UNQUOTED:
+            rec[k] = results[k][i]
     rec["mass_final_kg"] = results["y_end"][i, 6]
     rec["steps"] = results["steps"][i]
     if rec["outcome"] == "crashed":  # the end state is the located contact
