@@ -194,7 +194,16 @@ def test_report_bounds_table_quotes_the_kernels_l2_of_the_torque_deficit():
     from lgw.tuning.lunar.report_sections import bounds_table
 
     f = fly_section5(check=False)
-    b, _ = bounds_table(paper_gains(), (f.res, f.ctx))
+    b, note = bounds_table(paper_gains(), (f.res, f.ctx))
     for col in ("orbit", "attitude"):
         assert b[col]["B0du_L2"] == pytest.approx(f.res.cases[f"B0du_{col}_L2"][0], rel=1e-12)
     assert b["orbit"]["lambda2_L2_bound"] == pytest.approx(b["orbit"]["B0du_L2"])  # c2 = 1
+    for col in ("orbit", "attitude"):  # the filter norms: the kernel's, checked numbers
+        for k in ("lambda1", "lambda2"):
+            assert b[col][f"{k}_L2"] == pytest.approx(f.res.cases[f"{k}_{col}_L2"][0], rel=1e-12)
+    # Section 5's attitude error passes 180 degrees (min |eq0| ~ 2e-5, below the 1e-3 the check
+    # resolves): f1bar = 0 there and the attitude (18a) bound is infinite, said in the note
+    assert f.res.cases["min_abs_eq0"][0] < 1e-3
+    assert math.isinf(b["attitude"]["lambda1_L2_bound"]) and "infinite" in note
+    assert math.isfinite(b["attitude"]["lambda2_L2_bound"])
+    assert math.isfinite(b["orbit"]["lambda1_L2_bound"])

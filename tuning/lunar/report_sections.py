@@ -3,13 +3,14 @@ table with measured L2 norms."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from lgw.sim.lunar.batch import l2_norm
 from lgw.sim.lunar.closed_loop import RunOptions
-from lgw.sim.lunar.convergence import QUOTED
+from lgw.sim.lunar.convergence import QUOTED, RTOL
 from lgw.sim.lunar.reference import open_loop_full_model, reference
 from lgw.sim.lunar.scenario import scenario_claims
 from lgw.theory.lunar import parameters as P
@@ -208,6 +209,11 @@ FIGURES_NOTE = ("Figures: lgw.tuning.lunar.figures from the two runs of this tab
                 "figures come from `lgw simulate lunar ... --plot DIR`.")
 
 
+# the smallest |e_q0| the convergence check of a run resolves (1 % of its floor,
+# lgw.sim.lunar.convergence.QUOTED): a run's min |e_q0| at or below it is a crossing of 0
+EQ0_RESOLVED = RTOL * QUOTED["min_abs_eq0"][1]
+
+
 def bounds_table(g: Gains, measured=None, run_gains: Gains | None = None):
     """The bounds of the gain set ``g``; with ``measured`` (a run and its context, flown at
     ``run_gains``, default ``g``), the run's L2 norms beside the (18) bounds of the gains it
@@ -219,6 +225,7 @@ def bounds_table(g: Gains, measured=None, run_gains: Gains | None = None):
         res, ctx = measured
         t, o = res.t, res.out
         rg = run_gains or g
+        note_eq0 = ""
         rb = {"orbit": orbit_bounds(rg.orbit).to_dict(),
               "attitude": attitude_bounds(rg.attitude, 1.0).to_dict()}
         for col, key, l1, l2, eq0 in (("orbit", "B0du_o", "lam1o", "lam2o", None),
@@ -228,17 +235,27 @@ def bounds_table(g: Gains, measured=None, run_gains: Gains | None = None):
             # fast initial transient of B0 du); from the records only without it
             w = _kernel_or(res, f"B0du_{col}_L2", float(l2_norm(t, o[key])[0]))
             f1b = rb[col]["f1bar"]
-            if eq0:
-                f1b = _kernel_or(res, "min_abs_eq0", float(
-                    np.min(np.abs(o["eq"][:, 0, 0])))) ** 2 / 4 * float(
-                    np.linalg.eigvalsh(rg.attitude.K1).min())
             c1, c2 = lambda_gain_bounds(f1b, rb[col]["f2bar"])
+            if eq0:
+                meq0 = _kernel_or(res, "min_abs_eq0", float(np.min(np.abs(o["eq"][:, 0, 0]))))
+                if meq0 <= EQ0_RESOLVED:
+                    # e_q0 reaches 0 within what the step resolves: the attitude error passes
+                    # 180 degrees, where f1bar = 0 and (18a) bounds nothing
+                    c1 = math.inf
+                    note_eq0 = (f" The run's min |eq0| ({meq0:.3g}) is below what its "
+                                f"convergence check resolves ({EQ0_RESOLVED:g}): eq0 crosses "
+                                "0 (the attitude error passes 180 degrees), where f1bar = 0, "
+                                "so the attitude (18a) bound is infinite.")
+                else:
+                    f1b = meq0 ** 2 / 4 * float(np.linalg.eigvalsh(rg.attitude.K1).min())
+                    c1, c2 = lambda_gain_bounds(f1b, rb[col]["f2bar"])
             lam1 = _kernel_or(res, f"lambda1_{col}_L2", float(l2_norm(t, o[l1])[0]))
             lam2 = _kernel_or(res, f"lambda2_{col}_L2", float(l2_norm(t, o[l2])[0]))
             b.update({"B0du_L2": w, "lambda1_L2": lam1, "lambda1_L2_bound": c1 * w,
                       "lambda2_L2": lam2, "lambda2_L2_bound": c2 * w})
-        note += (" Measured rows: the coupled Section 5 run on [0, t_f]; the attitude bound "
-                 "uses f1bar from the run's min |eq0|.")
+        note += (" Measured rows: the coupled Section 5 run on [0, t_f], the kernel's "
+                 "integrals over every step; the attitude bound uses f1bar from the run's "
+                 "min |eq0|." + note_eq0)
         if run_gains is not None and run_gains.to_dict() != g.to_dict():
             note += (" The Section 5 run flies the paper's stated gains (its claims judge the "
                      "paper's scenario): the measured rows and their (18) bounds are for those "
