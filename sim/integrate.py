@@ -238,10 +238,10 @@ def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
         S = np.empty(NS)  # the system's trackers  # noqa: F821
         sys_init(i, C, Q, y, S)  # noqa: F821
         ksamp = 0  # sampled data: the index of the latest sample
+        # sampled data: the controller is due at the top of the loop (sample 0 at t = 0, then
+        # each sample instant reached): one call site, so one inlined copy of sys_sample
+        sample_due = ts > 0.0
         stop0 = False
-        if ts > 0.0:
-            # the first held output (sample 0 as an int64, not a literal: one specialisation)
-            stop0 = sys_sample(i, np.int64(0), 0.0, y, S, C, Q, R)  # noqa: F821
         t = 0.0
         step = 0  # accepted steps
         attempts = 0  # dopri5: accepted + rejected steps
@@ -259,6 +259,13 @@ def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
         t_new = 0.0
         on_sample = False  # sampled data: this step ends at a sample instant
         while True:
+            if sample_due:
+                sample_due = False
+                stop = sys_sample(i, ksamp, t, y, S, C, Q, R)  # noqa: F821
+                if started:
+                    done = stop
+                else:
+                    stop0 = stop
             if not at_node:
                 if done:
                     break
@@ -337,74 +344,70 @@ def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
                 sys_rhs(tst, Y, yr, K, stage + 1, X, i, C, Q)  # noqa: F821
             if at_node:
                 at_node = False
-                for j in range(NX):  # noqa: F821
-                    XL[j] = X[j]
                 if not started:  # t = 0
                     started = True
                     done = sys_start(i, y, X, S, C, Q, R)  # noqa: F821
                     if stop0:
                         done = True
-                if record:
+            else:
+                if not finite:
+                    bad = True
+                    break
+                if method == 1:
+                    # error control as in scipy's RK45 (Hairer, Norsett & Wanner II.4): RMS of
+                    # h E.K / (atol + rtol max(|y|, |y_new|)); reject above 1, safety 0.9
+                    attempts += 1
+                    errn = 0.0
                     for j in range(NY):  # noqa: F821
-                        rec_y[i, step, j] = y[j]
-                    for j in range(NX):  # noqa: F821
-                        rec_x[i, step, j] = XL[j]
-                continue
-            if not finite:
-                bad = True
-                break
-            if method == 1:
-                # error control as in scipy's RK45 (Hairer, Norsett & Wanner II.4): RMS of
-                # h E.K / (atol + rtol max(|y|, |y_new|)); reject above 1, safety 0.9
-                attempts += 1
-                errn = 0.0
+                        acc = 0.0
+                        for q in range(7):
+                            acc += DP_E[q] * K[q, j]
+                        sc = atol + rtol * max(abs(y[j]), abs(yn[j]))
+                        errn += (h * acc / sc) ** 2
+                    errn = math.sqrt(errn / NY)  # noqa: F821
+                    if not errn <= 1.0:  # NaN rejects too
+                        h_try = h * max(0.2, 0.9 * errn ** -0.2) if errn == errn else 0.2 * h
+                        rejected = True
+                        continue
+                    # PI control (Hairer & Wanner's DOPRI5: beta = 0.04); no growth right
+                    # after a rejection (as scipy's RK45)
+                    fac = 0.9 * max(errn, 1e-10) ** (-0.2 + 0.75 * PI_BETA) * err_old ** PI_BETA
+                    fac = min(PI_MAXFAC, max(0.2, fac))
+                    if rejected:
+                        fac = min(fac, 1.0)
+                    rejected = False
+                    err_old = max(errn, 1e-4)
+                    h_try = min(h * fac, hmax)
+                code, theta = sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R)  # noqa: F821
+                if code == STOP_INSIDE:
+                    for j in range(NY):  # noqa: F821
+                        y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, theta)
+                    t = t + theta * h
+                    break
                 for j in range(NY):  # noqa: F821
-                    acc = 0.0
-                    for q in range(7):
-                        acc += DP_E[q] * K[q, j]
-                    sc = atol + rtol * max(abs(y[j]), abs(yn[j]))
-                    errn += (h * acc / sc) ** 2
-                errn = math.sqrt(errn / NY)  # noqa: F821
-                if not errn <= 1.0:  # NaN rejects too
-                    h_try = h * max(0.2, 0.9 * errn ** -0.2) if errn == errn else 0.2 * h
-                    rejected = True
+                    y[j] = yn[j]
+                    k1[j] = k1n[j]
+                t = t_new
+                step += 1
+                if on_sample and code != STOP_AT_NODE:
+                    # sampled data: the controller reads y(t_k) and holds its new output (at the
+                    # top of the loop); then y' at t_k with it, and the record of the node (the
+                    # next pass, at_node)
+                    ksamp += 1
+                    sample_due = True
+                    at_node = True
                     continue
-                # PI control (Hairer & Wanner's DOPRI5: beta = 0.04); no growth right after a
-                # rejection (as scipy's RK45)
-                fac = 0.9 * max(errn, 1e-10) ** (-0.2 + 0.75 * PI_BETA) * err_old ** PI_BETA
-                fac = min(PI_MAXFAC, max(0.2, fac))
-                if rejected:
-                    fac = min(fac, 1.0)
-                rejected = False
-                err_old = max(errn, 1e-4)
-                h_try = min(h * fac, hmax)
-            code, theta = sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R)  # noqa: F821
-            if code == STOP_INSIDE:
-                for j in range(NY):  # noqa: F821
-                    y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, theta)
-                t = t + theta * h
-                break
-            for j in range(NY):  # noqa: F821
-                y[j] = yn[j]
-                k1[j] = k1n[j]
+                if code == STOP_AT_NODE:
+                    done = True
+            # the node (t = 0, a sample instant, or the step's new node): its auxiliary
+            # outputs, and its record
             for j in range(NX):  # noqa: F821
                 XL[j] = X[j]
-            t = t_new
-            step += 1
-            if on_sample and code != STOP_AT_NODE:
-                # sampled data: the controller reads y(t_k) and holds its new output; then y'
-                # at t_k with it, and the record of the node (the next pass, at_node)
-                ksamp += 1
-                done = sys_sample(i, ksamp, t, y, S, C, Q, R)  # noqa: F821
-                at_node = True
-                continue
             if record:
                 for j in range(NY):  # noqa: F821
                     rec_y[i, step, j] = y[j]
                 for j in range(NX):  # noqa: F821
                     rec_x[i, step, j] = XL[j]
-            if code == STOP_AT_NODE:
-                done = True
         sys_finish(i, t, y, S, C, Q, R)  # noqa: F821
         nonfinite[i] = bad
         nstep_out[i] = step
