@@ -325,8 +325,7 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
         pos[i, a] = y[a]
         vel[i, a] = y[3 + a]
     for k in range(kc + 1, nk + 1):
-        # a call, not another inlined copy of the controller: this runs only after a stop
-        _controller_call(i, k, y, S, C, Q, R)  # noqa: F821
+        _controller_fn(i, k, y, S, C, Q, R)  # noqa: F821
         if k < nk:
             for a in range(3):
                 U[i, k, a] = 0.0
@@ -335,9 +334,6 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
 HELPERS = (_inside, _clearance, _contact, _u_axis, _s_axis, _controller)
 # inlined into sys_sample (measured: see benchmarks/bench_eros.py)
 INLINE = (_u_axis, _s_axis, _controller)
-# also compiled as a plain call ("<name>_call"): sys_finish's samples after a stop (inlined
-# there too, the controller was a second copy of the sample hook's largest part to build)
-CALLED = (_controller,)
 HOOKS = (sys_init, sys_rhs, sys_sample, sys_start, sys_step, sys_finish)
 SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY": LY, "LZ": LZ,
          "OUT": OUT, "TEV": TEV, "KCUR": KCUR, "F0": F0, "G0": G0, "SV0": SV0, "U0": U0,
@@ -347,7 +343,7 @@ SLOTS = {"ST": ST, "CLR": CLR, "PATH": PATH, "HASLAST": HASLAST, "LX": LX, "LY":
 def hooks_source() -> str:
     """The hooks as written into a kernel module, with their slots."""
     from lgw.sim.integrate import hooks_text
-    return hooks_text(HOOKS, HELPERS, consts=SLOTS, inline=INLINE, called=CALLED)
+    return hooks_text(HOOKS, HELPERS, consts=SLOTS, inline=INLINE)
 
 
 def _deps() -> list[str]:
