@@ -570,8 +570,9 @@ def inline_source(template: str, system_source: str, hooks: Iterable[str]) -> st
             new.append(st)
         return new
 
-    if not todo:
-        return template
+    renamed = {prefix + b for _, bound, prefix in todo.values() for b in (*bound, "returned")}
+    if not todo or any(_bound_and_read(fn)[1] & renamed for fn, _, _ in todo.values()):
+        return template  # (a hook reading a global named like another's renamed local)
     kfn.body = walk(kfn.body)
     return ast.unparse(ast.fix_missing_locations(tree)) + "\n"
 
