@@ -1,7 +1,7 @@
 """Start-up of the command line per system, cold and warm, in one run (a script, not a test).
 
     python benchmarks/bench_startup.py [--systems mars lunar eros] [--lgw PATH] [--warmup]
-                                       [--repeat N]
+                                       [--repeat N] [--before PATH]
 
 For each system, with fresh temporary LGW_CACHE_DIR and NUMBA_CACHE_DIR (nothing compiled
 yet), measures the wall time and the CPU time (user + system, of the process and its children)
@@ -17,7 +17,9 @@ number, the wall seconds what a user waits.
 in one run); --warmup: also time ``lgw warmup SYSTEM`` on an empty cache, then the first
 simulate after it; --repeat N: N cold / warm pairs per system (each on a fresh cache), a row
 each, the ratio judged on the median pair (on a shared machine one pair can land on a burst of
-someone else's load).
+someone else's load); --before PATH: another ``lgw`` executable (e.g. the previous commit's
+venv) timed in the same run, its pair right before each pair of --lgw's, so that both see the
+same load: rows labelled "before", and its own largest ratio at the end.
 """
 
 from __future__ import annotations
@@ -78,43 +80,58 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=1, help="cold / warm pairs per system")
     ap.add_argument("--warmup", action="store_true",
                     help="also time `lgw warmup SYSTEM` and the simulate after it")
+    ap.add_argument("--before", default=None,
+                    help="another lgw executable timed in the same run (rows 'before')")
     args = ap.parse_args()
     cmd = _lgw(args.lgw)
+    versions = ([("before", [args.before])] if args.before else []) + [("now", cmd)]
     tmp = Path(tempfile.mkdtemp(prefix="lgw-startup-"))
-    print(f"lgw: {' '.join(cmd)}; cpu count {os.cpu_count()}, load average "
+    print(f"lgw: {' '.join(cmd)}"
+          + (f"; before: {args.before}" if args.before else "")
+          + f"; cpu count {os.cpu_count()}, load average "
           f"{os.getloadavg()[0]:.2f} (shared machine: wall times are upper bounds)")
     try:
         t_help, c_help, _ = timed(cmd, ["--help"], fresh_env(tmp))
         print(f"lgw --help: {t_help:.2f} s wall, {c_help:.2f} s CPU")
-        print(f"{'system':8} {'cold wall':>10} {'cold CPU':>9} {'warm wall':>10} "
+        w = 15 if args.before else 8
+        print(f"{'system':{w}} {'cold wall':>10} {'cold CPU':>9} {'warm wall':>10} "
               f"{'warm CPU':>9} {'cold/warm wall':>15} {'CPU':>6}   command")
         rows = []
+        before_rows = []
         for name in args.systems:
             sim = COMMANDS[name]
-            pairs = []
+            pairs: dict[str, list] = {label: [] for label, _ in versions}
             for _ in range(max(1, args.repeat)):
-                env = fresh_env(tmp)
-                t1, c1, p1 = timed(cmd, sim, env)
-                t2, c2, p2 = timed(cmd, sim, env)
-                hit = not any("compiling" in line for line in p2.stderr.splitlines())
-                pairs.append((name, t1, c1, t2, c2))
-                print(f"{name:8} {t1:9.1f}s {c1:8.1f}s {t2:9.1f}s {c2:8.1f}s "
-                      f"{t1 / t2:14.1f}x {c1 / c2:5.1f}x   lgw {' '.join(sim)}  (load "
-                      f"{os.getloadavg()[0]:.1f})"
-                      + ("" if hit else "   (the warm run compiled: the cache did not hit)"),
-                      flush=True)
-            pairs.sort(key=lambda r: r[1] / r[3])
-            rows.append(pairs[len(pairs) // 2])
+                for label, exe in versions:
+                    env = fresh_env(tmp)
+                    t1, c1, p1 = timed(exe, sim, env)
+                    t2, c2, p2 = timed(exe, sim, env)
+                    hit = not any("compiling" in line for line in p2.stderr.splitlines())
+                    pairs[label].append((name, t1, c1, t2, c2))
+                    tag = f"{name} ({label})" if args.before else name
+                    print(f"{tag:{w}} {t1:9.1f}s {c1:8.1f}s {t2:9.1f}s {c2:8.1f}s "
+                          f"{t1 / t2:14.1f}x {c1 / c2:5.1f}x   lgw {' '.join(sim)}  (load "
+                          f"{os.getloadavg()[0]:.1f})"
+                          + ("" if hit else "   (the warm run compiled: the cache did not hit)"),
+                          flush=True)
+            for label, got in pairs.items():
+                got.sort(key=lambda r: r[1] / r[3])
+                (before_rows if label == "before" else rows).append(got[len(got) // 2])
             if args.warmup:
                 env = fresh_env(tmp)
                 tw, cw, _ = timed(cmd, ["warmup", name], env)
                 t3, c3, _ = timed(cmd, sim, env)
                 print(f"{'':8} lgw warmup {name}: {tw:.1f} s wall, {cw:.1f} s CPU; then the "
                       f"first simulate {t3:.1f} s wall, {c3:.1f} s CPU")
+        how = f"wall{', median pair' if args.repeat > 1 else ''}"
+        if before_rows:
+            worst = max(r[1] / r[3] for r in before_rows)
+            print(f"before: largest cold/warm ({how}) {worst:.1f}x; per system: "
+                  + ", ".join(f"{r[0]} {r[1] / r[3]:.1f}x" for r in before_rows))
         worst = max(r[1] / r[3] for r in rows)
-        print(f"largest cold/warm (wall{', median pair' if args.repeat > 1 else ''}) "
-              f"{worst:.1f}x: "
-              f"{'meets' if worst <= 5 else 'MISSES'} the aim of <= 5x")
+        print(f"largest cold/warm ({how}) {worst:.1f}x: "
+              f"{'meets' if worst <= 5 else 'MISSES'} the aim of <= 5x; per system: "
+              + ", ".join(f"{r[0]} {r[1] / r[3]:.1f}x" for r in rows))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 

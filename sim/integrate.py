@@ -59,6 +59,8 @@ held ones included (their error is 0).
 
 from __future__ import annotations
 
+import ast
+import copy
 import inspect
 import math
 from collections.abc import Iterable
@@ -238,10 +240,10 @@ def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
         S = np.empty(NS)  # the system's trackers  # noqa: F821
         sys_init(i, C, Q, y, S)  # noqa: F821
         ksamp = 0  # sampled data: the index of the latest sample
+        # sampled data: the controller is due at the top of the loop (sample 0 at t = 0, then
+        # each sample instant reached): one call site, so one inlined copy of sys_sample
+        sample_due = ts > 0.0
         stop0 = False
-        if ts > 0.0:
-            # the first held output (sample 0 as an int64, not a literal: one specialisation)
-            stop0 = sys_sample(i, np.int64(0), 0.0, y, S, C, Q, R)  # noqa: F821
         t = 0.0
         step = 0  # accepted steps
         attempts = 0  # dopri5: accepted + rejected steps
@@ -259,6 +261,13 @@ def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
         t_new = 0.0
         on_sample = False  # sampled data: this step ends at a sample instant
         while True:
+            if sample_due:
+                sample_due = False
+                stop = sys_sample(i, ksamp, t, y, S, C, Q, R)  # noqa: F821
+                if started:
+                    done = stop
+                else:
+                    stop0 = stop
             if not at_node:
                 if done:
                     break
@@ -337,74 +346,70 @@ def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
                 sys_rhs(tst, Y, yr, K, stage + 1, X, i, C, Q)  # noqa: F821
             if at_node:
                 at_node = False
-                for j in range(NX):  # noqa: F821
-                    XL[j] = X[j]
                 if not started:  # t = 0
                     started = True
                     done = sys_start(i, y, X, S, C, Q, R)  # noqa: F821
                     if stop0:
                         done = True
-                if record:
+            else:
+                if not finite:
+                    bad = True
+                    break
+                if method == 1:
+                    # error control as in scipy's RK45 (Hairer, Norsett & Wanner II.4): RMS of
+                    # h E.K / (atol + rtol max(|y|, |y_new|)); reject above 1, safety 0.9
+                    attempts += 1
+                    errn = 0.0
                     for j in range(NY):  # noqa: F821
-                        rec_y[i, step, j] = y[j]
-                    for j in range(NX):  # noqa: F821
-                        rec_x[i, step, j] = XL[j]
-                continue
-            if not finite:
-                bad = True
-                break
-            if method == 1:
-                # error control as in scipy's RK45 (Hairer, Norsett & Wanner II.4): RMS of
-                # h E.K / (atol + rtol max(|y|, |y_new|)); reject above 1, safety 0.9
-                attempts += 1
-                errn = 0.0
+                        acc = 0.0
+                        for q in range(7):
+                            acc += DP_E[q] * K[q, j]
+                        sc = atol + rtol * max(abs(y[j]), abs(yn[j]))
+                        errn += (h * acc / sc) ** 2
+                    errn = math.sqrt(errn / NY)  # noqa: F821
+                    if not errn <= 1.0:  # NaN rejects too
+                        h_try = h * max(0.2, 0.9 * errn ** -0.2) if errn == errn else 0.2 * h
+                        rejected = True
+                        continue
+                    # PI control (Hairer & Wanner's DOPRI5: beta = 0.04); no growth right
+                    # after a rejection (as scipy's RK45)
+                    fac = 0.9 * max(errn, 1e-10) ** (-0.2 + 0.75 * PI_BETA) * err_old ** PI_BETA
+                    fac = min(PI_MAXFAC, max(0.2, fac))
+                    if rejected:
+                        fac = min(fac, 1.0)
+                    rejected = False
+                    err_old = max(errn, 1e-4)
+                    h_try = min(h * fac, hmax)
+                code, theta = sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R)  # noqa: F821
+                if code == STOP_INSIDE:
+                    for j in range(NY):  # noqa: F821
+                        y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, theta)
+                    t = t + theta * h
+                    break
                 for j in range(NY):  # noqa: F821
-                    acc = 0.0
-                    for q in range(7):
-                        acc += DP_E[q] * K[q, j]
-                    sc = atol + rtol * max(abs(y[j]), abs(yn[j]))
-                    errn += (h * acc / sc) ** 2
-                errn = math.sqrt(errn / NY)  # noqa: F821
-                if not errn <= 1.0:  # NaN rejects too
-                    h_try = h * max(0.2, 0.9 * errn ** -0.2) if errn == errn else 0.2 * h
-                    rejected = True
+                    y[j] = yn[j]
+                    k1[j] = k1n[j]
+                t = t_new
+                step += 1
+                if on_sample and code != STOP_AT_NODE:
+                    # sampled data: the controller reads y(t_k) and holds its new output (at the
+                    # top of the loop); then y' at t_k with it, and the record of the node (the
+                    # next pass, at_node)
+                    ksamp += 1
+                    sample_due = True
+                    at_node = True
                     continue
-                # PI control (Hairer & Wanner's DOPRI5: beta = 0.04); no growth right after a
-                # rejection (as scipy's RK45)
-                fac = 0.9 * max(errn, 1e-10) ** (-0.2 + 0.75 * PI_BETA) * err_old ** PI_BETA
-                fac = min(PI_MAXFAC, max(0.2, fac))
-                if rejected:
-                    fac = min(fac, 1.0)
-                rejected = False
-                err_old = max(errn, 1e-4)
-                h_try = min(h * fac, hmax)
-            code, theta = sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R)  # noqa: F821
-            if code == STOP_INSIDE:
-                for j in range(NY):  # noqa: F821
-                    y[j] = _herm(y[j], k1[j], yn[j], k1n[j], h, theta)
-                t = t + theta * h
-                break
-            for j in range(NY):  # noqa: F821
-                y[j] = yn[j]
-                k1[j] = k1n[j]
+                if code == STOP_AT_NODE:
+                    done = True
+            # the node (t = 0, a sample instant, or the step's new node): its auxiliary
+            # outputs, and its record
             for j in range(NX):  # noqa: F821
                 XL[j] = X[j]
-            t = t_new
-            step += 1
-            if on_sample and code != STOP_AT_NODE:
-                # sampled data: the controller reads y(t_k) and holds its new output; then y'
-                # at t_k with it, and the record of the node (the next pass, at_node)
-                ksamp += 1
-                done = sys_sample(i, ksamp, t, y, S, C, Q, R)  # noqa: F821
-                at_node = True
-                continue
             if record:
                 for j in range(NY):  # noqa: F821
                     rec_y[i, step, j] = y[j]
                 for j in range(NX):  # noqa: F821
                     rec_x[i, step, j] = XL[j]
-            if code == STOP_AT_NODE:
-                done = True
         sys_finish(i, t, y, S, C, Q, R)  # noqa: F821
         nonfinite[i] = bad
         nstep_out[i] = step
@@ -414,10 +419,162 @@ def kernel(C, Q, R, O, G, rec_y, rec_x):  # noqa: N803  (template)
             y_end[i, j] = yn[j] if bad else y[j]
 
 
-def template_source() -> str:
+def template_source(system_source: str | None = None) -> str:
     """The source of the template, as written into each generated kernel module (compiled
-    there as ``kernel``, ``KERNEL_FOOTER``)."""
-    return inspect.getsource(kernel)
+    there as ``kernel``, ``KERNEL_FOOTER``), with the hooks of ``INLINED_HOOKS`` defined in
+    ``system_source`` written into it (``inline_source``) where that is possible."""
+    src = inspect.getsource(kernel)
+    return src if system_source is None else inline_source(src, system_source, INLINED_HOOKS)
+
+
+def _bound_and_read(fn: ast.FunctionDef) -> tuple[set[str], set[str]]:
+    """(the names a function binds: its parameters and every name it assigns; the names it
+    reads and never binds: its globals)."""
+    bound = {a.arg for a in fn.args.args}
+    read = set()
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Name):
+            (bound if isinstance(node.ctx, ast.Store | ast.Del) else read).add(node.id)
+    return bound, read - bound
+
+
+def _inlinable(fn: ast.FunctionDef) -> bool:
+    """A hook that can be written into the template: positional parameters only, no nested
+    function, lambda, comprehension, global, yield, try or with, and a last statement that
+    returns or a body with no return at all (every path then leaves with a value, or none
+    does)."""
+    a = fn.args
+    if a.vararg or a.kwarg or a.kwonlyargs or a.posonlyargs or a.defaults:
+        return False
+    banned = (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ListComp, ast.SetComp,
+              ast.DictComp, ast.GeneratorExp, ast.Global, ast.Nonlocal, ast.Yield,
+              ast.YieldFrom, ast.ClassDef, ast.Try, ast.With)
+    if any(isinstance(n, banned) for b in fn.body for n in ast.walk(b)):
+        return False
+    returns = [n for n in ast.walk(fn) if isinstance(n, ast.Return)]
+    return not returns or isinstance(fn.body[-1], ast.Return)
+
+
+class _Rename(ast.NodeTransformer):
+    def __init__(self, names: set[str], prefix: str) -> None:
+        self.names = names
+        self.prefix = prefix
+
+    def visit_Name(self, node: ast.Name) -> ast.Name:  # noqa: N802  (ast's visitor name)
+        if node.id in self.names:
+            node.id = self.prefix + node.id
+        return node
+
+
+class _Returns(ast.NodeTransformer):
+    """``return v`` -> ``target = v; break`` out of the loop that wraps the hook's body; a
+    return inside one of the hook's own loops also sets ``flag``, tested after each loop that
+    holds one (``if flag: break``), out to the wrapping loop."""
+
+    def __init__(self, target: ast.expr | None, flag: str) -> None:
+        self.target = target
+        self.flag = flag
+
+    def visit_Return(self, node: ast.Return) -> list[ast.stmt]:  # noqa: N802
+        out: list[ast.stmt] = []
+        if self.target is not None and node.value is not None:
+            out.append(ast.Assign(targets=[copy.deepcopy(self.target)], value=node.value))
+        return [*out, ast.Assign(targets=[ast.Name(self.flag, ast.Store())],
+                                 value=ast.Constant(True)), ast.Break()]
+
+    def _loop(self, node: ast.For | ast.While) -> ast.stmt | list[ast.stmt]:
+        inner = any(isinstance(n, ast.Return) for n in ast.walk(node))
+        self.generic_visit(node)
+        if not inner:
+            return node
+        return [node, ast.If(test=ast.Name(self.flag, ast.Load()), body=[ast.Break()],
+                             orelse=[])]
+
+    visit_For = _loop  # noqa: N815
+    visit_While = _loop  # noqa: N815
+
+
+def inline_source(template: str, system_source: str, hooks: Iterable[str]) -> str:
+    """The template's source with each call statement of a hook in ``hooks`` (``hook(...)``
+    or ``target = hook(...)``) replaced by the hook's body, as written in ``system_source``:
+    its parameters and locals renamed ``_<hook>_<name>`` and bound to the call's arguments,
+    each ``return v`` an assignment of the target and a break out of a loop run once (out of
+    the hook's own loops first, by a flag ``_<hook>_returned``).
+
+    Why: numba's ``inline='always'`` translates the callee again at each call site and then
+    copies its IR block by block, each copy carrying the callee's whole scope (cost blocks x
+    variables); for seed 000's vector field and step hook that was a fifth of the kernel's
+    build.  Written into the source, the body is translated once with the kernel.  The
+    arithmetic is the same statements in the same order.  A hook that cannot be written in
+    (``_inlinable``), or whose globals a template local would shadow, stays a call (numba
+    inlines it, ``hook_jit``)."""
+    tree = ast.parse(template)
+    kfn = tree.body[0]
+    defs = {n.name: n for n in ast.parse(system_source).body if isinstance(n, ast.FunctionDef)}
+    k_bound, k_read = _bound_and_read(kfn)
+    todo = {}
+    for name in hooks:
+        fn = defs.get(name)
+        if fn is None or not _inlinable(fn):
+            continue
+        bound, read = _bound_and_read(fn)
+        prefix = f"_{name}_"
+        if "returned" in bound or read & k_bound or any(prefix + b in k_bound | k_read
+                                                        for b in (*bound, "returned")):
+            continue
+        todo[name] = (fn, bound, prefix)
+
+    def expand(stmt: ast.stmt) -> list[ast.stmt] | None:
+        call = stmt.value if isinstance(stmt, ast.Expr | ast.Assign) else None
+        if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name)
+                and call.func.id in todo) or call.keywords:
+            return None
+        fn, bound, prefix = todo[call.func.id]
+        params = [a.arg for a in fn.args.args]
+        if len(call.args) != len(params) or any(isinstance(a, ast.Starred) for a in call.args):
+            return None
+        target = None
+        if isinstance(stmt, ast.Assign):
+            if len(stmt.targets) != 1:
+                return None
+            target = stmt.targets[0]
+        body = copy.deepcopy(fn.body)
+        if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
+            body = body[1:]  # the docstring
+        has_return = any(isinstance(n, ast.Return) for b in body for n in ast.walk(b))
+        if target is not None and not has_return:
+            return None
+        mod = ast.Module(body=body, type_ignores=[])
+        mod = _Rename(bound, prefix).visit(mod)
+        flag = prefix + "returned"
+        mod = _Returns(target, flag).visit(mod)
+        out: list[ast.stmt] = [ast.Assign(targets=[ast.Name(prefix + p, ast.Store())], value=a)
+                               for p, a in zip(params, call.args, strict=True)]
+        if has_return:
+            out += [ast.Assign(targets=[ast.Name(flag, ast.Store())], value=ast.Constant(False)),
+                    ast.While(test=ast.Constant(True), body=mod.body, orelse=[])]
+        else:
+            out += mod.body or [ast.Pass()]
+        return out
+
+    def walk(stmts: list[ast.stmt]) -> list[ast.stmt]:
+        new = []
+        for st in stmts:
+            rep = expand(st)
+            if rep is not None:
+                new += rep
+                continue
+            for field in ("body", "orelse"):
+                if isinstance(getattr(st, field, None), list):
+                    setattr(st, field, walk(getattr(st, field)))
+            new.append(st)
+        return new
+
+    renamed = {prefix + b for _, bound, prefix in todo.values() for b in (*bound, "returned")}
+    if not todo or any(_bound_and_read(fn)[1] & renamed for fn, _, _ in todo.values()):
+        return template  # (a hook reading a global named like another's renamed local)
+    kfn.body = walk(kfn.body)
+    return ast.unparse(ast.fix_missing_locations(tree)) + "\n"
 
 
 KERNEL_IMPORTS = (
@@ -499,7 +656,7 @@ def kernel_module_source(header: str, system_source: str, sizes: dict[str, int])
     stub = "" if "def sys_sample(" in system_source else SAMPLE_STUB
     return "\n".join(["# generated by lgw.sim.integrate: do not edit (a cache entry)",
                       *KERNEL_IMPORTS, "", header, "", consts, "", system_source, stub, "",
-                      template_source(), KERNEL_FOOTER])
+                      template_source(system_source + stub), KERNEL_FOOTER])
 
 
 def hooks_module_source(system_source: str, sizes: dict[str, int]) -> str:

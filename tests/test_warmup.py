@@ -128,3 +128,105 @@ def test_hooks_text_compiles_each_helper_as_asked() -> None:
     assert mod._scale_fn.targetoptions.get("inline") == "always"
     assert mod._scale_call.targetoptions.get("inline", "never") == "never"
     assert mod.sys_twice.targetoptions.get("inline", "never") == "never"
+
+
+# --- hooks written into the integrator's source (lgw.sim.integrate.inline_source) ---------
+
+TEMPLATE = '''
+def kernel(a, n):
+    out = 0.0
+    for k in range(n):
+        x = a + k
+        hook_v(x, out, k)
+        out, flag = hook_r(x, out)
+        if flag:
+            out = out + 1.0
+    return out
+'''
+
+HOOKS = '''
+LIMIT = 5.0
+
+
+def hook_v(x, out, k):
+    """no return: written in as is"""
+    y = x * 2.0
+    k = k + int(y)
+
+
+def hook_r(x, out):
+    """returns on several paths; its locals shadow none of the template's"""
+    y = x * 0.5
+    if y > LIMIT:
+        return out - y, True
+    for j in range(3):
+        y = y + j
+    return out + y, False
+'''
+
+
+def _run(src: str, *args):
+    ns: dict = {}
+    exec(compile(HOOKS + "\n" + src, "<test>", "exec"), ns)  # noqa: S102 (test text)
+    return ns["kernel"](*args)
+
+
+def test_inline_source_writes_hooks_in_with_the_same_results() -> None:
+    from lgw.sim.integrate import inline_source
+
+    src = inline_source(TEMPLATE, HOOKS, ["hook_v", "hook_r"])
+    assert "hook_r(" not in src and "hook_v(" not in src  # both written in
+    assert "_hook_r_y" in src and "LIMIT" in src  # locals renamed, globals kept
+    for a, n in ((0.0, 0), (1.5, 4), (9.0, 7), (-3.0, 12)):
+        assert _run(src, a, n) == _run(TEMPLATE, a, n)
+
+
+def test_inline_source_returns_from_inside_a_hook_s_loops() -> None:
+    from lgw.sim.integrate import inline_source
+
+    looped = HOOKS.replace("        y = y + j\n", "        y = y + j\n"
+                                                  "        while y > 4.0:\n"
+                                                  "            if y > 5.5:\n"
+                                                  "                return out + j, True\n"
+                                                  "            y = y - 1.0\n")
+    src = inline_source(TEMPLATE, looped, ["hook_r"])
+    assert "hook_r(" not in src and "_hook_r_returned" in src
+    for a, n in ((0.0, 0), (1.5, 4), (7.0, 5), (9.0, 7), (-3.0, 12)):
+        assert _run_with(looped, src, a, n) == _run_with(looped, TEMPLATE, a, n)
+
+
+def _run_with(hooks: str, src: str, *args):
+    ns: dict = {}
+    exec(compile(hooks + "\n" + src, "<test>", "exec"), ns)  # noqa: S102 (test text)
+    return ns["kernel"](*args)
+
+
+def test_inline_source_leaves_a_hook_it_cannot_write_in_as_a_call() -> None:
+    from lgw.sim.integrate import inline_source
+
+    nested = HOOKS.replace("    y = x * 0.5\n", "    y = (lambda z: z * 0.5)(x)\n")
+    assert "hook_r(" in inline_source(TEMPLATE, nested, ["hook_r"])  # a lambda
+    shadow = HOOKS.replace("LIMIT", "flag")  # a global the template binds as a local
+    assert "hook_r(" in inline_source(TEMPLATE, shadow, ["hook_r"])
+
+
+@pytest.mark.parametrize("system", ["mars", "eros"])
+def test_kernel_text_has_its_per_step_hooks_written_in(system) -> None:
+    """The vector field, the step and the sample hook are in the kernel's own source (not
+    numba-inlined calls)."""
+    import ast
+
+    from lgw.sim import integrate
+    if system == "mars":
+        from lgw.sim.mars import kernel as K
+        from lgw.sim.mars.laws import get_law
+        text = K.kernel_text(get_law("corrected"))
+    else:
+        from lgw.sim.eros import kernel as K
+        text = K.kernel_text()
+    kfn = next(n for n in ast.parse(text).body
+               if isinstance(n, ast.FunctionDef) and n.name == "kernel")
+    called = {n.func.id for n in ast.walk(kfn)
+              if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)}
+    assert not called & set(integrate.INLINED_HOOKS), called
+    assert {"sys_init", "sys_start", "sys_finish"} <= called

@@ -338,28 +338,87 @@ def _ground(t, h, y, k1, yn, k1n, S, tol_r, tol_v, b):  # noqa: N803
     return thc if thc <= 1.0 else thz
 
 
+def _blown(t, y, k1, yn, k1n, X, S, grav, blow_acc):  # noqa: N803
+    """A blown-up command at a stage of this step (or at its new node): the step is not
+    accepted and the case ends at its start (y, finite, every quantity physical), as
+    "command_blown_up" (lgw.sim.results); theta = 0 on the interpolant between y and itself
+    returns y exactly.  Unless no thrust could keep the vehicle off the ground (the corrected
+    law's command diverges as r_z -> 0 with v_z != 0): then that impact is the outcome."""
+    for j in range(NY):  # noqa: F821
+        yn[j] = y[j]
+        k1n[j] = k1[j]
+    if (S[LANDED] != 0.0 or S[DRY] != 0.0 or S[CONT] != 0.0 or S[BELOW] != 0.0
+            or not _impact_fn(t, y, S, grav, blow_acc)):  # noqa: F821
+        S[BLOWN] = X[XBLOWN]
+
+
+def _norms_at(y, k1, yn, k1n, h, th):
+    """(|r|, |v|) at th in [0, 1] of the step, on its cubic Hermite interpolant."""
+    rr = 0.0
+    vv = 0.0
+    for ax in range(3):
+        rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, th) ** 2  # noqa: F821
+        vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h, th) ** 2  # noqa: F821
+    return math.sqrt(rr), math.sqrt(vv)
+
+
+def _landing(i, t, h, thf, y, k1, yn, k1n, S, tol_r, tol_v, r_land, v_land, fuel,  # noqa: N803
+             m0):
+    """The first th in [0, thf] of the step inside the landing criterion (given that thf is):
+    bisection on L(th) = max(|r|/tol_r, |v|/tol_v) - 1, Hermite in th.  If it is <= thf, the
+    landing there is recorded (S, r_land, v_land, fuel of case i).  Returns th."""
+    a = 0.0
+    b = thf
+    for _ in range(BISECT_ITERS):  # noqa: F821
+        mid = 0.5 * (a + b)
+        rr = 0.0
+        vv = 0.0
+        for ax in range(3):
+            rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, mid) ** 2  # noqa: F821
+            vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h,  # noqa: F821
+                        mid) ** 2
+        if math.sqrt(rr) <= tol_r and math.sqrt(vv) <= tol_v:
+            b = mid
+        else:
+            a = mid
+    if b <= thf:  # landed before (or as) the mass reached m_dry or the ground
+        S[LANDED] = 1.0
+        S[TLAND] = t + b * h
+        for ax in range(3):
+            r_land[i, ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, b)  # noqa: F821
+            v_land[i, ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax],  # noqa: F821
+                                  k1n[3 + ax], h, b)
+        fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)  # noqa: F821
+    return b
+
+
+def _touchdown(i, S, tol_r, tol_v, r_land, v_land, fuel, m0):  # noqa: N803
+    """A located ground contact (S[XT], S[XR], ...) within the landing tolerance at the
+    crossing is a touchdown: recorded as the landing of case i; True if so."""
+    rc = math.sqrt(S[XR] ** 2 + S[XR + 1] ** 2 + S[XR + 2] ** 2)
+    vc = math.sqrt(S[XV] ** 2 + S[XV + 1] ** 2 + S[XV + 2] ** 2)
+    if not (rc <= tol_r and vc <= tol_v):
+        return False
+    S[LANDED] = 1.0
+    S[TLAND] = S[XT]
+    for ax in range(3):
+        r_land[i, ax] = S[XR + ax]
+        v_land[i, ax] = S[XV + ax]
+    fuel[i] = m0[i] - S[XM]
+    return True
+
+
 def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
     """Dry mass, ground contact, s-bands, landing and the metrics of one accepted step
-    (lgw.sim.mars.batch)."""
-    r0, v0, m0, dcoef, domega, dphase = C
+    (lgw.sim.mars.batch).  The paths taken once per case at most (a blown-up command, the
+    landing, a touchdown) are calls of helpers compiled apart (``COMPILED_APART``): inlined,
+    they were most of this hook's share of the kernel's build."""
+    m0 = C[2]
     (P, SP, grav, area, pkind, gkind, c, fmax, lim, dkind, damp, eps, tol_r, tol_v,
      stop_landing, m_dry, blow_acc) = Q
-    (landed, t_land, r_land, v_land, fuel, peak, peak_u, tsat, minalt, ground, ts1, ts2,
-     ts1x, ts2x, fexh, blown, peak_s, peak_us, peak_a, cont, t_cont, r_cont, v_cont,
-     below) = R
+    r_land, v_land, fuel = R[2], R[3], R[4]
     if X[XBLOWN] != 0.0:
-        # a blown-up command at a stage of this step (or at its new node): the step is not
-        # accepted and the case ends at its start (y, finite, every quantity physical), as
-        # "command_blown_up" (lgw.sim.results); theta = 0 on the interpolant between y and
-        # itself returns y exactly
-        for j in range(NY):  # noqa: F821
-            yn[j] = y[j]
-            k1n[j] = k1[j]
-        # unless no thrust could keep the vehicle off the ground (the corrected law's command
-        # diverges as r_z -> 0 with v_z != 0): then that impact is the outcome
-        if (S[LANDED] != 0.0 or S[DRY] != 0.0 or S[CONT] != 0.0 or S[BELOW] != 0.0
-                or not _impact_fn(t, y, S, grav, blow_acc)):  # noqa: F821
-            S[BLOWN] = X[XBLOWN]
+        _blown_fn(t, y, k1, yn, k1n, X, S, grav, blow_acc)  # noqa: F821
         return STOP_INSIDE, 0.0  # noqa: F821
     has_landed = S[LANDED] != 0.0
     dry = S[DRY] != 0.0
@@ -411,58 +470,22 @@ def sys_step(i, t, h, y, k1, yn, k1n, XL, X, S, C, Q, R):  # noqa: N803
             rn = math.sqrt(yn[0] ** 2 + yn[1] ** 2 + yn[2] ** 2)
             vn = math.sqrt(yn[3] ** 2 + yn[4] ** 2 + yn[5] ** 2)
         else:
-            rr = 0.0
-            vv = 0.0
-            for ax in range(3):
-                rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, thf) ** 2  # noqa: F821
-                vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h,  # noqa: F821
-                            thf) ** 2
-            rn = math.sqrt(rr)
-            vn = math.sqrt(vv)
+            rn, vn = _norms_at_fn(y, k1, yn, k1n, h, thf)  # noqa: F821
         frac = thf
         if rn <= tol_r and vn <= tol_v:
-            # bisection on L(th) = max(|r|/tol_r, |v|/tol_v) - 1, Hermite in th
-            a = 0.0
-            b = thf
-            for _ in range(BISECT_ITERS):  # noqa: F821
-                mid = 0.5 * (a + b)
-                rr = 0.0
-                vv = 0.0
-                for ax in range(3):
-                    rr += _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, mid) ** 2  # noqa: F821
-                    vv += _herm(y[3 + ax], k1[3 + ax], yn[3 + ax], k1n[3 + ax], h,  # noqa: F821
-                                mid) ** 2
-                if math.sqrt(rr) <= tol_r and math.sqrt(vv) <= tol_v:
-                    b = mid
-                else:
-                    a = mid
+            b = _landing_fn(i, t, h, thf, y, k1, yn, k1n, S, tol_r, tol_v,  # noqa: F821
+                            r_land, v_land, fuel, m0)
             if b <= thf:  # landed before (or as) the mass reached m_dry or the ground
                 frac = b
                 if hit:  # landed first: the contact after it is not the case's
                     hit = False
                     S[CONT] = 0.0
                 has_landed = True
-                S[LANDED] = 1.0
-                S[TLAND] = t + b * h
-                for ax in range(3):
-                    r_land[i, ax] = _herm(y[ax], k1[ax], yn[ax], k1n[ax], h, b)  # noqa: F821
-                    v_land[i, ax] = _herm(y[3 + ax], k1[3 + ax], yn[3 + ax],  # noqa: F821
-                                          k1n[3 + ax], h, b)
-                fuel[i] = m0[i] - _herm(y[6], k1[6], yn[6], k1n[6], h, b)  # noqa: F821
                 if stop_landing:
                     dry_now = False  # the case ends at landing, above m_dry
-        if hit:
-            # a contact within the landing tolerance at the crossing is a touchdown
-            rc = math.sqrt(S[XR] ** 2 + S[XR + 1] ** 2 + S[XR + 2] ** 2)
-            vc = math.sqrt(S[XV] ** 2 + S[XV + 1] ** 2 + S[XV + 2] ** 2)
-            if rc <= tol_r and vc <= tol_v:
-                has_landed = True
-                S[LANDED] = 1.0
-                S[TLAND] = S[XT]
-                for ax in range(3):
-                    r_land[i, ax] = S[XR + ax]
-                    v_land[i, ax] = S[XV + ax]
-                fuel[i] = m0[i] - S[XM]
+        # a contact within the landing tolerance at the crossing is a touchdown
+        if hit and _touchdown_fn(i, S, tol_r, tol_v, r_land, v_land, fuel, m0):  # noqa: F821
+            has_landed = True
         if dry_now and not has_landed:  # out of propellant before landing
             # all of it: m = m_dry at the located crossing by definition (the Hermite value
             # there is m_dry to the bisection's 2^-60 of the step, or anything at all if a
@@ -553,9 +576,11 @@ def sys_finish(i, t, y, S, C, Q, R):  # noqa: N803
     ground[i] = S[GROUND] != 0.0 or S[CONT] != 0.0  # a graze below r_z = 0, or the contact
 
 
-HOOKS = (sys_init, sys_rhs, _sat_margin, _arrival, _impact, _ground, sys_start, sys_step,
-         sys_finish)
-COMPILED_APART = (_sat_margin, _arrival, _impact, _ground)  # helpers, called: "<name>_fn"
+HOOKS = (sys_init, sys_rhs, _sat_margin, _arrival, _impact, _ground, _blown, _norms_at,
+         _landing, _touchdown, sys_start, sys_step, sys_finish)
+# helpers, called as "<name>_fn"
+COMPILED_APART = (_sat_margin, _arrival, _impact, _ground, _blown, _norms_at, _landing,
+                  _touchdown)
 # the hooks compiled into each law's kernel module (the vector field calls the law; it and the
 # step hook are inlined, lgw.sim.integrate.INLINED_HOOKS); the others, and the helpers, do not
 # depend on the law and live in one shared module (``hooks_module``)
