@@ -37,7 +37,7 @@ def encoding(n: int) -> None:
     base = ",".join(json.dumps(rec, allow_nan=False) for rec in iter_case_records(res))
     ta = time.process_time() - t
     t = time.process_time()
-    new = ",".join(CaseJson(res))
+    new = b",".join(CaseJson(res)).decode("ascii")
     tb = time.process_time() - t
     same = json.loads(f"[{base}]", object_pairs_hook=list) == json.loads(
         f"[{new}]", object_pairs_hook=list)
