@@ -373,7 +373,7 @@ def _assemble(cols: list[tuple[str, list[bytes] | bytes, bool]], n: int) -> byte
 
 # --- campaigns kept on disk -----------------------------------------------------------------
 
-SPILL_CHUNK = 16384  # cases flown, then written to disk, at a time (~10 MB of results)
+SPILL_CHUNK = 4096  # cases flown on one thread, then written to disk, at a time (~2.5 MB)
 _SPILLED = tuple(dict.fromkeys((*ARRAY_FIELDS, "r0", "v0", "m0")))
 
 
