@@ -63,7 +63,10 @@ def map_threads(fn: Callable[[slice], Any], n: int, chunk: int,
     for most of its time, e.g. a nogil kernel run on one thread).  Each thread flies whole
     chunks, so no thread waits for another between pieces of a chunk, and the calling thread's
     work on a result (``consume``) overlaps the flight of the next ones.  At most 2 x
-    ``threads`` results are held at a time; an error stops the chunks not started."""
+    ``threads`` results are held at a time; an error stops the chunks not started.  The first
+    chunk is flown in the calling thread before the others start: what a first call sets up
+    (a kernel loaded or compiled, its cache directory checked) is set up once, not raced by
+    the threads."""
     from collections import deque
     from concurrent.futures import ThreadPoolExecutor
 
@@ -82,6 +85,10 @@ def map_threads(fn: Callable[[slice], Any], n: int, chunk: int,
     pending: deque = deque()
     todo = iter(slices)
     try:
+        first = next(todo)
+        consume(fn(first))
+        if bar is not None:
+            bar.advance(task, first.stop - first.start)
         with ThreadPoolExecutor(threads, thread_name_prefix="lgw-chunk") as pool:
             try:
                 for sl in todo:
