@@ -7,6 +7,9 @@ seed), so results are identical whatever the executor layout.
 
 * ``run_local(fn, n, chunk)``: fn(slice) for each chunk in order, in this process (the kernel
   parallelises over the cases of a chunk with numba threads), with an optional progress bar;
+* ``map_threads(fn, n, chunk, consume, threads)``: fn(slice) for each chunk on ``threads``
+  threads at once (fn runs a nogil kernel on one thread), ``consume`` called on the results in
+  chunk order in the calling thread, a bounded number of results waiting;
 * ``map_dask(task, args)``: task(*a) for each a on a dask.distributed cluster, either a running
   one (``scheduler`` address) or a LocalCluster of ``workers`` single-threaded workers; results
   in order.  Scheduler-connection checks belong to the caller (the CLI).
@@ -50,6 +53,62 @@ def run_local(fn: Callable[[slice], None], n: int, chunk: int, *, progress: bool
         for sl in slices:
             fn(sl)
             bar.advance(task, sl.stop - sl.start)
+
+
+def map_threads(fn: Callable[[slice], Any], n: int, chunk: int,
+                consume: Callable[[Any], None], *, threads: int, progress: bool = False,
+                label: str = "simulating") -> None:
+    """consume(fn(sl)) for every chunk of n cases, consumed in chunk order in the calling
+    thread, with ``threads`` chunks computed at once in a thread pool (``fn`` releases the GIL
+    for most of its time, e.g. a nogil kernel run on one thread).  Each thread flies whole
+    chunks, so no thread waits for another between pieces of a chunk, and the calling thread's
+    work on a result (``consume``) overlaps the flight of the next ones.  At most 2 x
+    ``threads`` results are held at a time; an error stops the chunks not started.  The first
+    chunk is flown in the calling thread before the others start: what a first call sets up
+    (a kernel loaded or compiled, its cache directory checked) is set up once, not raced by
+    the threads."""
+    from collections import deque
+    from concurrent.futures import ThreadPoolExecutor
+
+    slices = chunk_slices(n, chunk)
+    if threads <= 1 or len(slices) <= 1:
+        run_local(lambda sl: consume(fn(sl)), n, chunk, progress=progress, label=label)
+        return
+    bar = task = None
+    if progress:
+        from rich.console import Console
+        from rich.progress import Progress
+
+        bar = Progress(console=Console(stderr=True), transient=True)
+        bar.start()
+        task = bar.add_task(f"{label} {n} cases", total=n)
+    pending: deque = deque()
+    todo = iter(slices)
+    try:
+        first = next(todo)
+        consume(fn(first))
+        if bar is not None:
+            bar.advance(task, first.stop - first.start)
+        with ThreadPoolExecutor(threads, thread_name_prefix="lgw-chunk") as pool:
+            try:
+                for sl in todo:
+                    pending.append((sl, pool.submit(fn, sl)))
+                    if len(pending) >= 2 * threads:
+                        done, fut = pending.popleft()
+                        consume(fut.result())
+                        if bar is not None:
+                            bar.advance(task, done.stop - done.start)
+                while pending:
+                    done, fut = pending.popleft()
+                    consume(fut.result())
+                    if bar is not None:
+                        bar.advance(task, done.stop - done.start)
+            finally:  # an error or an interrupt: chunks not started yet are dropped
+                for _, fut in pending:
+                    fut.cancel()
+    finally:
+        if bar is not None:
+            bar.stop()
 
 
 def check_workers(workers: int | None) -> None:

@@ -208,9 +208,10 @@ class Stream:
     an iterable of JSON values) is written as an array, one item at a time; ``items`` may be
     a function returning a fresh iterator, so that one document can be written twice (to
     stdout and into ``--out``) without holding its items in memory.  Or, given ``encoded``
-    (an iterable of texts, each one or more array items already encoded as strict JSON and
-    joined by ","), the texts are written as they are (no per-value walk: the producer
-    answers for strict JSON; a function returning a fresh iterable as for ``items``)."""
+    (an iterable of texts, str or ASCII bytes, each one or more array items already encoded
+    as strict JSON and joined by ","), the texts are written as they are (no per-value walk:
+    the producer answers for strict JSON; a function returning a fresh iterable as for
+    ``items``; ``write_encoded``)."""
 
     def __init__(self, items: Any = None, write: Any = None, encoded: Any = None) -> None:
         self.items, self.write, self.encoded = items, write, encoded
@@ -374,11 +375,7 @@ def write_output_set(folder: Path, files: dict[str, Any], command: str,
 def _stream_json(value: Any, out: Any, flag: list[bool]) -> None:
     if isinstance(value, Stream) and value.encoded is not None:
         out.write("[")
-        first = True
-        for text in value.encoded() if callable(value.encoded) else value.encoded:
-            if text:
-                out.write(text if first else "," + text)
-                first = False
+        write_encoded(value.encoded() if callable(value.encoded) else value.encoded, out)
         out.write("]")
     elif isinstance(value, Stream):
         out.write("[")
@@ -398,6 +395,58 @@ def _stream_json(value: Any, out: Any, flag: list[bool]) -> None:
         clean, bad = finite_or_null(value)
         flag[0] = flag[0] or bad
         out.write(json.dumps(clean, allow_nan=False))
+
+
+ENCODED_AHEAD = 2  # encoded texts waiting for the writer thread (a few MB each)
+
+
+def write_encoded(texts: Any, out: Any) -> None:
+    """The encoded array items ``texts`` (str or ASCII bytes, each one or more items joined
+    by ",") into the text file ``out``, joined by ",".  Into a file with a binary ``buffer``
+    (a real file, stdout), bytes go straight to the buffer from a writer thread: the next
+    text is made while the last one is written (a write call releases the GIL), and nothing
+    is decoded and re-encoded.  Otherwise (e.g. a StringIO) the texts are written as str."""
+    raw = getattr(out, "buffer", None)
+    if raw is None:
+        first = True
+        for text in texts:
+            if text:
+                text = text.decode("ascii") if isinstance(text, bytes) else text
+                out.write(text if first else "," + text)
+                first = False
+        return
+    import queue
+    import threading
+
+    out.flush()  # what the text layer holds goes first
+    todo: queue.Queue = queue.Queue(maxsize=ENCODED_AHEAD)
+    failed: list[BaseException] = []
+
+    def writer() -> None:
+        while (data := todo.get()) is not None:
+            if not failed:  # after an error, drain the queue so the producer never blocks
+                try:
+                    raw.write(data)
+                except BaseException as e:  # noqa: BLE001  (re-raised in the caller)
+                    failed.append(e)
+
+    thread = threading.Thread(target=writer, name="lgw-json-writer", daemon=True)
+    thread.start()
+    try:
+        first = True
+        for text in texts:
+            if failed:
+                break
+            if text:
+                if not first:
+                    todo.put(b",")
+                todo.put(text.encode("ascii") if isinstance(text, str) else text)
+                first = False
+    finally:
+        todo.put(None)
+        thread.join()
+    if failed:
+        raise failed[0]
 
 
 def has_stream(value: Any) -> bool:

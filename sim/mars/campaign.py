@@ -17,6 +17,7 @@ SeedSequence(seed).spawn child, so the results are identical whatever the execut
 from __future__ import annotations
 
 import math
+import mmap
 import shutil
 import tempfile
 import weakref
@@ -26,7 +27,7 @@ from typing import Any
 
 import numpy as np
 import orjson
-from lgw.sim import executors
+from lgw.sim import executors, integrate
 from lgw.sim.mars.batch import ARRAY_FIELDS, OUTCOMES_USED, BatchResult, simulate_batch
 from lgw.sim.results import OUTCOMES, counts
 from lgw.sim.stats import finite_stats
@@ -277,20 +278,32 @@ def _items(text: bytes, vector: bool) -> list[bytes]:
     return text[2:-2].split(b"],[") if vector else text[1:-1].split(b",")
 
 
-def _encode_column(a: Any) -> list[bytes]:
+def _encode_column(a: Any) -> list[bytes] | bytes:
     """Each case's value of the per-case column ``a`` (n,) or (n, 3) as strict JSON text,
     non-finite floats as null: orjson encodes the whole column in C (shortest round-trip
-    floats, ~30 ns each against ~1 us for ``json.dumps``' ``float.__repr__``)."""
+    floats, ~30 ns each against ~1 us for ``json.dumps``' ``float.__repr__``).  A column whose
+    values are all the same bits (e.g. every case landed, no contact: false, null) is the one
+    text of its first value (bytes, not a list): the same text for every case, made once."""
     vector = False
     if isinstance(a, np.ndarray):  # else a list of JSON-ready values
         a = np.ascontiguousarray(a)
         vector = a.ndim == 2
+        if len(a) > 1 and _constant(a):
+            return _items(orjson.dumps(a[:1], option=orjson.OPT_SERIALIZE_NUMPY), vector)[0]
     return _items(orjson.dumps(a, option=orjson.OPT_SERIALIZE_NUMPY), vector)
 
 
+def _constant(a: np.ndarray) -> bool:
+    """Every row of ``a`` has the bits of the first (so the same text: -0.0 and 0.0, or two
+    NaN payloads, count as different, which only costs the shortcut)."""
+    bits = a.view(np.uint8).reshape(len(a), -1)
+    return bool((bits == bits[0]).all())
+
+
 class CaseJson:
-    """The case records of ``res`` (the first ``n``) as JSON text, RECORD_CHUNK records at a
-    time joined by "," (items of a JSON array, strict JSON: non-finite values are null), for
+    """The case records of ``res`` (the first ``n``) as JSON text (ASCII bytes), RECORD_CHUNK
+    records at a time joined by "," (items of a JSON array, strict JSON: non-finite values are
+    null), for
     ``lgw.tuning.io.Stream(encoded=...)``: the same keys, order and values as
     ``iter_case_records``, encoded column by column (each column of a chunk in one orjson
     call, the records assembled by one join), never one Python object per value: a million
@@ -302,7 +315,7 @@ class CaseJson:
                  extra: Extra | None = None) -> None:
         self.res, self.n, self.extra = res, n, extra
 
-    def __iter__(self) -> Iterator[str]:
+    def __iter__(self) -> Iterator[bytes]:
         res = self.res
         total = len(res) if self.n is None else min(self.n, len(res))
         refined = res.info.get("refined_dt", {})
@@ -310,7 +323,7 @@ class CaseJson:
             b = min(a + RECORD_CHUNK, total)
             part = result_rows(res, slice(a, b))
             code, t_out = part.outcomes()
-            cols: list[tuple[str, list[bytes], bool]] = [
+            cols: list[tuple[str, list[bytes] | bytes, bool]] = [
                 ("case", _encode_column(np.arange(a, b, dtype=np.int64)), False)]
             for k in RECORD_ARRAYS:
                 col = np.asarray(getattr(part, k))
@@ -323,22 +336,26 @@ class CaseJson:
             cols.append(("outcome_time", _encode_column(t_out), False))
             if self.extra is not None:
                 cols += [(k, _encode_column(v), False) for k, v in self.extra(a, b).items()]
-            yield _assemble(cols, b - a).decode("ascii")
+            yield _assemble(cols, b - a)
 
 
-def _assemble(cols: list[tuple[str, list[bytes], bool]], n: int) -> bytes:
+def _assemble(cols: list[tuple[str, list[bytes] | bytes, bool]], n: int) -> bytes:
     """n JSON objects joined by ",", the key of each column before its values.  The record is
     a template of constant texts (the keys, and the columns whose value is the same in every
     case of the chunk, e.g. null or false) between the varying columns; the varying values
     are interleaved with the constants by extended-slice assignment into one list, joined
     once."""
+    if n < 1:
+        return b""
     consts: list[bytes] = [b""]  # consts[k] comes before varying column k (and after the last)
     varying: list[list[bytes]] = []
     close = b""  # what ends the previous value: "]" after a 3-list
     for j, (key, vals, vector) in enumerate(cols):
         consts[-1] += (b"{" if j == 0 else close + b",") + orjson.dumps(key) + b":" + (
             b"[" if vector else b"")
-        if n > 1 and vals.count(vals[0]) == n:
+        if isinstance(vals, bytes):  # the same text in every case (_encode_column)
+            consts[-1] += vals
+        elif n > 1 and vals.count(vals[0]) == n:
             consts[-1] += vals[0]
         else:
             varying.append(vals)
@@ -351,12 +368,13 @@ def _assemble(cols: list[tuple[str, list[bytes], bool]], n: int) -> bytes:
         pieces[2 * k::stride] = [consts[k]] * n
         pieces[2 * k + 1::stride] = vals
     pieces[stride - 1::stride] = [consts[-1]] * n
-    return b"".join(pieces)[:-1]
+    pieces[-1] = consts[-1][:-1]  # the last record ends without ","
+    return b"".join(pieces)
 
 
 # --- campaigns kept on disk -----------------------------------------------------------------
 
-SPILL_CHUNK = 16384  # cases flown, then written to disk, at a time (~10 MB of results)
+SPILL_CHUNK = 4096  # cases flown on one thread, then written to disk, at a time (~2.5 MB)
 _SPILLED = tuple(dict.fromkeys((*ARRAY_FIELDS, "r0", "v0", "m0")))
 
 
@@ -402,6 +420,16 @@ class SpilledResult:
         dtype, tail = self._layout[name]
         return np.memmap(self.folder / name, dtype=dtype, mode=mode, shape=(self._n, *tail))
 
+    def _view(self, name: str) -> np.ndarray:
+        """The array ``name`` mapped copy on write (as ``_map(name, "c")``, without
+        ``np.memmap``'s ~0.1 ms of path handling per access: a check that reads one number of
+        each of a thousand cases maps the file thousands of times); unmapped when the array
+        and its views are dropped."""
+        dtype, tail = self._layout[name]
+        with open(self.folder / name, "rb") as f:
+            m = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_COPY)
+        return np.frombuffer(m, dtype=dtype).reshape((self._n, *tail))
+
     def column(self, name: str, sl: slice = slice(None)) -> np.ndarray:
         """Cases ``sl`` (step 1) of the array ``name``, read from disk."""
         dtype, tail = self._layout[name]
@@ -419,7 +447,7 @@ class SpilledResult:
             return self.column(name)
         # mapped, copy on write: a whole-column operation reads the column, an element or a
         # row (res.t_s2[i]: a view) reads its page only and does not hold the column in memory
-        return self._map(name, "c")
+        return self._view(name)
 
     def rows(self, sl: slice) -> BatchResult:
         """The cases ``sl`` as a ``BatchResult`` (in memory)."""
@@ -485,9 +513,15 @@ def _run_spilled(r0, v0, m0, gains: Gains, *, chunk: int, progress: bool,
     v0 = np.atleast_2d(np.asarray(v0, float))
     m0 = np.broadcast_to(np.asarray(m0, float), (r0.shape[0],))
     out = SpilledResult()
+    # one spill chunk per thread, each flown on that one thread (the kernel is nogil): no
+    # thread waits for the other between the kernel's pieces, and the writing of a flown
+    # chunk to disk overlaps the flight of the next
+    threads = integrate.threads() if opts.get("parallel", True) else 1
+    one = {**opts, "parallel": False}
 
-    def fly(sl: slice) -> None:
-        out.append(simulate_batch(r0[sl], v0[sl], m0[sl], gains, case_offset=sl.start,
-                                  chunk=chunk, **opts))
-    executors.run_local(fly, r0.shape[0], SPILL_CHUNK, progress=progress)
+    def fly(sl: slice) -> BatchResult:
+        return simulate_batch(r0[sl], v0[sl], m0[sl], gains, case_offset=sl.start,
+                              chunk=chunk, **one)
+    executors.map_threads(fly, r0.shape[0], SPILL_CHUNK, out.append, threads=threads,
+                          progress=progress)
     return out
