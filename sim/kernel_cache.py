@@ -148,7 +148,9 @@ def cache_dir() -> Path:
         _make_private(d)
         problem = trust_problem(d)
         if problem is None:
-            probe = d / f".probe-{os.getpid()}"
+            # one name per thread: two threads' first kernels probed the same file, and the
+            # one that found it gone fell back to a temporary cache with a warning
+            probe = d / f".probe-{os.getpid()}-{threading.get_ident()}"
             probe.write_text("")
             probe.unlink()
             return d

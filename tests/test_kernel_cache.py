@@ -291,3 +291,26 @@ def test_the_generated_module_is_never_imported_from_disk(cache) -> None:
     kernel_cache._LOADED.clear()
     again = kernel_cache.module_for("test_exec", _text(5))
     assert again.VALUE == 5 and Path(again.__file__).read_text() == _text(5)
+
+
+def test_threads_probing_the_cache_at_once_all_keep_it(tmp_path, monkeypatch):
+    """Two threads' first kernels check the cache directory at the same time: each must get
+    the configured directory, not a temporary fallback (the probe file is per thread)."""
+    import threading
+
+    from lgw.sim import kernel_cache as KC
+
+    monkeypatch.setenv(KC.ENV_VAR, str(tmp_path))
+    got, start = [], threading.Barrier(8)
+
+    def probe():
+        start.wait()
+        for _ in range(200):
+            got.append(KC.cache_dir())
+
+    threads = [threading.Thread(target=probe) for _ in range(8)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert set(got) == {tmp_path / "kernels"}
