@@ -311,6 +311,10 @@ def bandwidth_figure(bw, ideal: dict | None, title: str, targets: tuple[float, f
             a.set_ylabel(label)
         ax[2].plot(wn, [p.torque_saturation_end_s for p in pts], "o-", color="C3",
                    label="coupled, dt")
+        for p in pts:  # a stopped run's saturation ends at its contact at the latest: marked
+            if p.outcome != "completed":
+                ax[2].plot([p.wn], [p.torque_saturation_end_s], "x", color="#b00000", ms=9,
+                           label=f"stopped: {p.outcome}")
         ax[2].set_ylabel("torque (28) saturated until [s]")
         for a in ax:
             a.set_xscale("log")
