@@ -57,8 +57,10 @@ def f1bar_attitude(g: LoopGains, eq0_min: float) -> float:
 def lambda_gain_bounds(f1bar: float, f2bar: float) -> tuple[float, float]:
     """(18a), (18b): ||lambda1|| <= ||B0 du|| / sqrt(2 f1bar),
     ||lambda2|| <= ||B0 du|| / sqrt(2 f2bar - 1) (L2 norms, lambda(0) = 0).  As printed, and
-    what integrating (17b) gives (claim L2-18)."""
-    return 1 / _sqrt(2 * f1bar), 1 / _sqrt(2 * f2bar - 1)
+    what integrating (17b) gives (claim L2-18).  A numeric f1bar = 0 (the attitude error at 180
+    degrees, claim attitude-F1) gives an infinite (18a) constant: the bound says nothing."""
+    numeric_zero = not isinstance(f1bar, sp.Basic) and f1bar == 0
+    return (math.inf if numeric_zero else 1 / _sqrt(2 * f1bar)), 1 / _sqrt(2 * f2bar - 1)
 
 
 def v2_initial(z1_0: np.ndarray, z2_0: np.ndarray, d0e0: float = 0.0, D: float = 0.0,

@@ -3,7 +3,6 @@ table with measured L2 norms."""
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -14,7 +13,12 @@ from lgw.sim.lunar.convergence import QUOTED, RTOL
 from lgw.sim.lunar.reference import open_loop_full_model, reference
 from lgw.sim.lunar.scenario import scenario_claims
 from lgw.theory.lunar import parameters as P
-from lgw.theory.lunar.bounds import attitude_bounds, lambda_gain_bounds, orbit_bounds
+from lgw.theory.lunar.bounds import (
+    attitude_bounds,
+    f1bar_attitude,
+    lambda_gain_bounds,
+    orbit_bounds,
+)
 from lgw.theory.lunar.gains import Gains, paper_gains
 from lgw.theory.report import Figure, Section, fmt
 
@@ -235,20 +239,18 @@ def bounds_table(g: Gains, measured=None, run_gains: Gains | None = None):
             # fast initial transient of B0 du); from the records only without it
             w = _kernel_or(res, f"B0du_{col}_L2", float(l2_norm(t, o[key])[0]))
             f1b = rb[col]["f1bar"]
-            c1, c2 = lambda_gain_bounds(f1b, rb[col]["f2bar"])
             if eq0:
                 meq0 = _kernel_or(res, "min_abs_eq0", float(np.min(np.abs(o["eq"][:, 0, 0]))))
                 if meq0 <= EQ0_RESOLVED:
                     # e_q0 reaches 0 within what the step resolves: the attitude error passes
                     # 180 degrees, where f1bar = 0 and (18a) bounds nothing
-                    c1 = math.inf
                     note_eq0 = (f" The run's min |eq0| ({meq0:.3g}) is below what its "
                                 f"convergence check resolves ({EQ0_RESOLVED:g}): eq0 crosses "
                                 "0 (the attitude error passes 180 degrees), where f1bar = 0, "
                                 "so the attitude (18a) bound is infinite.")
-                else:
-                    f1b = meq0 ** 2 / 4 * float(np.linalg.eigvalsh(rg.attitude.K1).min())
-                    c1, c2 = lambda_gain_bounds(f1b, rb[col]["f2bar"])
+                    meq0 = 0.0
+                f1b = f1bar_attitude(rg.attitude, meq0)
+            c1, c2 = lambda_gain_bounds(f1b, rb[col]["f2bar"])
             lam1 = _kernel_or(res, f"lambda1_{col}_L2", float(l2_norm(t, o[l1])[0]))
             lam2 = _kernel_or(res, f"lambda2_{col}_L2", float(l2_norm(t, o[l2])[0]))
             b.update({"B0du_L2": w, "lambda1_L2": lam1, "lambda1_L2_bound": c1 * w,
