@@ -17,7 +17,8 @@ seed), so results are identical whatever the executor layout.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import contextlib
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -36,23 +37,30 @@ def chunk_slices(n: int, chunk: int) -> list[slice]:
     return [slice(a, min(a + chunk, n)) for a in range(0, n, chunk)]
 
 
-def run_local(fn: Callable[[slice], None], n: int, chunk: int, *, progress: bool = False,
-              label: str = "simulating") -> None:
-    """Call fn(sl) for every chunk of n cases, in order; a rich progress bar on stderr if
-    ``progress`` and there is more than one chunk."""
-    slices = chunk_slices(n, chunk)
-    if not (progress and len(slices) > 1):
-        for sl in slices:
-            fn(sl)
+@contextlib.contextmanager
+def _progress(n: int, label: str, show: bool) -> Iterator[Callable[[slice], None]]:
+    """advance(sl): a rich progress bar on stderr over n cases moved past chunk sl (nothing
+    when not ``show``)."""
+    if not show:
+        yield lambda sl: None
         return
     from rich.console import Console
     from rich.progress import Progress
 
     with Progress(console=Console(stderr=True), transient=True) as bar:
         task = bar.add_task(f"{label} {n} cases", total=n)
+        yield lambda sl: bar.advance(task, sl.stop - sl.start)
+
+
+def run_local(fn: Callable[[slice], None], n: int, chunk: int, *, progress: bool = False,
+              label: str = "simulating") -> None:
+    """Call fn(sl) for every chunk of n cases, in order; a rich progress bar on stderr if
+    ``progress`` and there is more than one chunk."""
+    slices = chunk_slices(n, chunk)
+    with _progress(n, label, progress and len(slices) > 1) as advance:
         for sl in slices:
             fn(sl)
-            bar.advance(task, sl.stop - sl.start)
+            advance(sl)
 
 
 def map_threads(fn: Callable[[slice], Any], n: int, chunk: int,
@@ -74,41 +82,26 @@ def map_threads(fn: Callable[[slice], Any], n: int, chunk: int,
     if threads <= 1 or len(slices) <= 1:
         run_local(lambda sl: consume(fn(sl)), n, chunk, progress=progress, label=label)
         return
-    bar = task = None
-    if progress:
-        from rich.console import Console
-        from rich.progress import Progress
-
-        bar = Progress(console=Console(stderr=True), transient=True)
-        bar.start()
-        task = bar.add_task(f"{label} {n} cases", total=n)
     pending: deque = deque()
-    todo = iter(slices)
-    try:
-        first = next(todo)
-        consume(fn(first))
-        if bar is not None:
-            bar.advance(task, first.stop - first.start)
+    with _progress(n, label, progress) as advance:
+        def take() -> None:
+            sl, fut = pending.popleft()
+            consume(fut.result())
+            advance(sl)
+
+        consume(fn(slices[0]))
+        advance(slices[0])
         with ThreadPoolExecutor(threads, thread_name_prefix="lgw-chunk") as pool:
             try:
-                for sl in todo:
+                for sl in slices[1:]:
                     pending.append((sl, pool.submit(fn, sl)))
                     if len(pending) >= 2 * threads:
-                        done, fut = pending.popleft()
-                        consume(fut.result())
-                        if bar is not None:
-                            bar.advance(task, done.stop - done.start)
+                        take()
                 while pending:
-                    done, fut = pending.popleft()
-                    consume(fut.result())
-                    if bar is not None:
-                        bar.advance(task, done.stop - done.start)
+                    take()
             finally:  # an error or an interrupt: chunks not started yet are dropped
                 for _, fut in pending:
                     fut.cancel()
-    finally:
-        if bar is not None:
-            bar.stop()
 
 
 def check_workers(workers: int | None) -> None:
