@@ -586,8 +586,17 @@ KERNEL_IMPORTS = (
     "    _herm_min)",
 )
 
+# numba builds, besides a function's own code, a CPython wrapper (to call it from Python) and a
+# C wrapper (to call it through a pointer) for every function it compiles, and optimises and
+# caches both.  A function that only compiled code calls (a hook run once per case, a helper of a
+# generated module, a part of a generated law) needs neither: without them a cold mars build
+# takes a fifth less CPU (docs/sim.md).  numba does not check the flag: calling such a function
+# from Python crashes the interpreter, so it is given only to generated names that nothing in
+# Python calls (``tests/test_warmup.py`` checks which).  The kernel keeps its CPython wrapper.
+CALLEE_ONLY = "no_cpython_wrapper=True, no_cfunc_wrapper=True"
+
 KERNEL_FOOTER = '''
-kernel = numba.njit(kernel, error_model="numpy", nogil=True, cache=True)
+kernel = numba.njit(kernel, error_model="numpy", nogil=True, cache=True, no_cfunc_wrapper=True)
 '''
 
 # The hooks numba inlines into the kernel (its IR): those of every stage, step and sample.  As a
@@ -612,7 +621,7 @@ def hook_jit(names: Iterable[str], cache: bool = False,
     opts = ", cache=True" if cache else ""
     inl = set(INLINED_HOOKS) | set(inline)
     return [f"{n} = numba.njit({n}, error_model='numpy'{opts}"
-            + (", inline='always')" if n in inl else ")") for n in names]
+            + (", inline='always')" if n in inl else f", {CALLEE_ONLY})") for n in names]
 
 
 def hooks_text(hooks: Iterable, helpers: Iterable = (), *, consts: dict | None = None,
@@ -630,7 +639,7 @@ def hooks_text(hooks: Iterable, helpers: Iterable = (), *, consts: dict | None =
 
     def jit(f, suffix: str, inlined: bool) -> str:
         return (f"{f.__name__}{suffix} = numba.njit({f.__name__}, error_model='numpy', "
-                "cache=True" + (", inline='always')" if inlined else ")"))
+                "cache=True" + (", inline='always')" if inlined else f", {CALLEE_ONLY})"))
 
     return "\n".join([*imports, "", *(f"{k} = {v!r}" for k, v in (consts or {}).items()), "",
                       *(inspect.getsource(f) + "\n" for f in helpers + hooks),

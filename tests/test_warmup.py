@@ -5,7 +5,10 @@ run (a second one would be a second cold build of the whole integrator)."""
 from __future__ import annotations
 
 import json
+import re
+from pathlib import Path
 
+import numba
 import numpy as np
 import pytest
 from lgw.sim.kernel_cache import cache_dir
@@ -124,10 +127,47 @@ def test_hooks_text_compiles_each_helper_as_asked() -> None:
     text = "import numba\n" + integrate.hooks_text([sys_twice], [_scale], consts={"SCALE": 3.0},
                                                      inline=[_scale], called=[_scale])
     mod = kernel_cache.load_module(f"test_hooks_text_{kernel_cache.key([text])}", lambda: text)
-    assert mod.sys_twice(1.5) == 9.0
+    hook = mod.sys_twice
+    # a hook compiled apart has no CPython wrapper (integrate.CALLEE_ONLY): compiled code calls it
+    assert numba.njit(lambda x: hook(x))(1.5) == 9.0
     assert mod._scale_fn.targetoptions.get("inline") == "always"
     assert mod._scale_call.targetoptions.get("inline", "never") == "never"
     assert mod.sys_twice.targetoptions.get("inline", "never") == "never"
+    for f in (mod._scale_call, mod.sys_twice):
+        assert f.targetoptions.get("no_cpython_wrapper") and f.targetoptions.get("no_cfunc_wrapper")
+
+
+def _callee_only_names() -> set[str]:
+    """The functions of every system's generated modules compiled without wrappers."""
+    from lgw.sim.eros import descent_kernel
+    from lgw.sim.eros import kernel as eros_kernel
+    from lgw.sim.lunar import kernel as lunar_kernel
+    from lgw.sim.mars import kernel as mars_kernel
+    from lgw.sim.mars.laws import LAWS
+
+    mods = [mars_kernel.hooks_module(), *(mars_kernel.kernel_module(law) for law in LAWS),
+            lunar_kernel.kernel_module(), eros_kernel.kernel_module(),
+            descent_kernel.kernel_module()]
+    return {name for mod in mods for name, f in vars(mod).items()
+            if getattr(f, "targetoptions", {}).get("no_cpython_wrapper")}
+
+
+def test_no_python_code_reaches_a_function_without_its_wrapper() -> None:
+    """numba does not guard a function compiled with ``integrate.CALLEE_ONLY``: called from
+    Python it crashes the interpreter.  Python reaches a generated module's function as an
+    attribute (``module.name``) or an import: no source of the project does either for one."""
+    names = _callee_only_names()
+    # the hooks run once per case and the helpers compiled apart, of each system
+    assert {"sys_init", "sys_start", "sys_finish", "_ground_fn"} <= names
+    root = Path(__file__).resolve().parents[1]
+    pattern = re.compile(r"(\.|\bimport\s+)(" + "|".join(map(re.escape, names)) + r")\b")
+    hits = []
+    for path in root.glob("*/**/*.py"):
+        if path.parts[len(root.parts)] in {"theory", "sim", "tuning", "tests", "benchmarks"}:
+            for k, line in enumerate(path.read_text().splitlines(), 1):
+                if pattern.search(line.split("#")[0]) and "numba.njit" not in line:
+                    hits.append(f"{path.relative_to(root)}:{k}: {line.strip()}")
+    assert not hits, "\n".join(hits)
 
 
 # --- hooks written into the integrator's source (lgw.sim.integrate.inline_source) ---------

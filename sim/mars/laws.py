@@ -36,6 +36,7 @@ import numba
 import numpy as np
 import sympy as sp
 from lgw.sim.codegen import lambdified_source, nb_sig, nb_sign
+from lgw.sim.integrate import CALLEE_ONLY
 from lgw.theory.errors import ParameterError
 from lgw.theory.mars import mss as mss
 from lgw.theory.mars import supertwisting as st
@@ -248,7 +249,9 @@ def law_source(spec: LawSpec, with_s2: bool) -> str:
             continue
         src, imp = lambdified_source(gen[key], f"_{key}")
         imports |= set(imp)
-        opts = 'error_model="numpy"' + (", fastmath=FASTMATH" if key != "guard" else "")
+        # a part only ``law`` calls: no wrappers (lgw.sim.integrate.CALLEE_ONLY)
+        opts = (f'error_model="numpy", {CALLEE_ONLY}'
+                + (", fastmath=FASTMATH" if key != "guard" else ""))
         parts += [src, f"_{key} = numba.njit(_{key}, {opts})", ""]
     pars = ", ".join([f"P[i, {j}]" for j in range(len(spec.params))]
                      + [f"SP[i, {SURFACE_SYMBOLS.index(x)}]" for x in gen["extra"]])
