@@ -612,6 +612,17 @@ kernel = numba.njit(kernel, error_model="numpy", nogil=True, cache=True, no_cfun
 INLINED_HOOKS = ("sys_rhs", "sys_step", "sys_sample")
 
 
+def callee_source(functions: Iterable[tuple[str, str]]) -> list[str]:
+    """The lines of a generated module defining functions [(name, source)] that only its
+    kernel calls (a system's generated laws and plant terms), each cached and compiled
+    without wrappers (``CALLEE_ONLY``), for every system alike."""
+    body = []
+    for name, src in functions:
+        body += [src, f"{name} = numba.njit({name}, cache=True, error_model='numpy', "
+                      f"{CALLEE_ONLY})", ""]
+    return body
+
+
 def hook_jit(names: Iterable[str], cache: bool = False,
              inline: Iterable[str] = ()) -> list[str]:
     """The lines compiling a system's hooks in its generated module (``INLINED_HOOKS`` and

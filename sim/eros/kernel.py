@@ -101,13 +101,9 @@ def law_functions() -> list[tuple[str, str]]:
 def law_header() -> str:
     """The generated laws and plant terms, and the compiled solid-angle sum of the mesh."""
     from lgw.sim.codegen import VECTOR_IMPORTS
-    from lgw.sim.integrate import CALLEE_ONLY
-    body = []
-    for name, src in law_functions():
-        body += [src, f"{name} = numba.njit({name}, cache=True, error_model='numpy', "
-                      f"{CALLEE_ONLY})", ""]
+    from lgw.sim.integrate import callee_source
     return "\n".join([*VECTOR_IMPORTS[1:], "from lgw.sim.eros.polygrav import solid_angle_sum",
-                      "", *body])
+                      "", *callee_source(law_functions())])
 
 
 # --- templates (hooks; names resolve in the generated module) --------------------------------

@@ -122,12 +122,8 @@ def law_functions() -> list[tuple[str, str]]:
 
 def law_header() -> str:
     from lgw.sim.codegen import VECTOR_IMPORTS
-    from lgw.sim.integrate import CALLEE_ONLY
-    body = []
-    for name, src in law_functions():
-        body += [src, f"{name} = numba.njit({name}, cache=True, error_model='numpy', "
-                      f"{CALLEE_ONLY})", ""]
-    return "\n".join([*VECTOR_IMPORTS[1:], "", *body])
+    from lgw.sim.integrate import callee_source
+    return "\n".join([*VECTOR_IMPORTS[1:], "", *callee_source(law_functions())])
 
 
 # --- compiled plant helpers (seed 001 (1), (2), (27); lgw.sim.lunar.plant) ------------------
